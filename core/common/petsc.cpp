@@ -1,0 +1,38 @@
+#include "common/petsc.hpp"
+
+#include <fmt/format.h>
+
+namespace stiction {
+
+void petsc_check(PetscErrorCode ierr, const char* expr, const char* file, int line) {
+  if (ierr == 0) return;
+  const char* text = nullptr;
+  char* specific = nullptr;
+  PetscErrorMessage(ierr, &text, &specific);
+  throw Error(fmt::format("PETSc error {} in {} ({}:{}): {}{}{}", static_cast<int>(ierr), expr, file,
+                          line, text ? text : "", specific && *specific ? ": " : "",
+                          specific ? specific : ""),
+              ErrorKind::Numerical);
+}
+
+PetscSession::PetscSession(int* argc, char*** argv) {
+  PetscBool initialised = PETSC_FALSE;
+  PetscInitialized(&initialised);
+  if (initialised) return;
+  STICTION_PETSC(PetscInitialize(argc, argv, nullptr, nullptr));
+  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+}
+
+PetscSession::~PetscSession() {
+  PetscBool finalised = PETSC_FALSE;
+  PetscFinalized(&finalised);
+  if (!finalised) PetscFinalize();
+}
+
+std::string petsc_version_string() {
+  char buf[256];
+  PetscGetVersion(buf, sizeof buf);
+  return buf;
+}
+
+}  // namespace stiction

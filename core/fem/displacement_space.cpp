@@ -1,0 +1,76 @@
+#include "fem/displacement_space.hpp"
+
+namespace stiction::fem {
+
+DisplacementSpace::DisplacementSpace(const mesh::Mesh& mesh, BasisKind kind)
+    : mesh_(&mesh), kind_(kind), topo_(mesh::build_edges(mesh)) {}
+
+void DisplacementSpace::cell_nodes(int cell, int* nodes) const {
+  const int d = dim(), nv = d + 1;
+  const int* v = mesh_->cell(cell);
+  for (int k = 0; k < nv; ++k) nodes[k] = v[k];
+  if (!is_quadratic(kind_)) return;
+  const int ne = mesh::n_simplex_edges(d);
+  for (int e = 0; e < ne; ++e) nodes[nv + e] = n_vertices() + topo_.cell_edges[static_cast<size_t>(cell) * ne + e];
+}
+
+void DisplacementSpace::facet_nodes(int facet, int* nodes) const {
+  const int d = dim();
+  const int* v = mesh_->facet(facet);
+  for (int k = 0; k < d; ++k) nodes[k] = v[k];
+  if (!is_quadratic(kind_)) return;
+  const int ne = mesh::n_simplex_edges(d - 1);
+  for (int e = 0; e < ne; ++e) nodes[d + e] = n_vertices() + topo_.facet_edges[static_cast<size_t>(facet) * ne + e];
+}
+
+void DisplacementSpace::node_position(int node, double* X) const {
+  const int d = dim();
+  if (is_vertex_node(node)) {
+    for (int k = 0; k < d; ++k) X[k] = mesh_->vertex(node)[k];
+    return;
+  }
+  const auto [a, b] = topo_.edges[node - n_vertices()];
+  for (int k = 0; k < d; ++k) X[k] = 0.5 * (mesh_->vertex(a)[k] + mesh_->vertex(b)[k]);
+}
+
+void DisplacementSpace::interpolate(const VectorField& g, std::vector<double>& coefs) const {
+  const int d = dim();
+  coefs.assign(n_dofs(), 0.0);
+  double X[3];
+  for (int n = 0; n < n_nodes(); ++n) {
+    node_position(n, X);
+    g(X, &coefs[static_cast<size_t>(n) * d]);
+  }
+  if (kind_ != BasisKind::P2Hierarchical) return;
+  for (int e = 0; e < topo_.n_edges(); ++e) {
+    const auto [a, b] = topo_.edges[e];
+    double* c = &coefs[static_cast<size_t>(n_vertices() + e) * d];
+    for (int k = 0; k < d; ++k) c[k] -= 0.5 * (coefs[static_cast<size_t>(a) * d + k] + coefs[static_cast<size_t>(b) * d + k]);
+  }
+}
+
+void DisplacementSpace::interpolate_node(const VectorField& g, int node, double* out) const {
+  double X[3];
+  node_position(node, X);
+  g(X, out);
+  if (is_vertex_node(node) || kind_ != BasisKind::P2Hierarchical) return;
+  const auto [a, b] = topo_.edges[node - n_vertices()];
+  double ga[3], gb[3];
+  g(mesh_->vertex(a), ga);
+  g(mesh_->vertex(b), gb);
+  for (int k = 0; k < dim(); ++k) out[k] -= 0.5 * (ga[k] + gb[k]);
+}
+
+std::vector<double> DisplacementSpace::nodal_values(const std::vector<double>& coefs) const {
+  std::vector<double> out = coefs;
+  if (kind_ != BasisKind::P2Hierarchical) return out;
+  const int d = dim();
+  for (int e = 0; e < topo_.n_edges(); ++e) {
+    const auto [a, b] = topo_.edges[e];
+    double* c = &out[static_cast<size_t>(n_vertices() + e) * d];
+    for (int k = 0; k < d; ++k) c[k] += 0.5 * (coefs[static_cast<size_t>(a) * d + k] + coefs[static_cast<size_t>(b) * d + k]);
+  }
+  return out;
+}
+
+}  // namespace stiction::fem

@@ -1,0 +1,287 @@
+#include "fem/elasticity_assembly.hpp"
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/error.hpp"
+#include "common/petsc.hpp"
+#include "fem/quadrature.hpp"
+
+namespace stiction::fem {
+
+namespace {
+
+using materials::Mat3;
+
+// Shape-function values and reference gradients tabulated at a rule's points.
+struct Tabulation {
+  QuadratureRule rule;
+  int n = 0;                  // shape functions
+  std::vector<double> N;      // q x n
+  std::vector<double> dN;     // q x n x d
+};
+
+Tabulation tabulate(int d, BasisKind kind, int degree) {
+  Tabulation t{simplex_quadrature(d, degree), n_shape_functions(d, kind), {}, {}};
+  t.N.resize(static_cast<size_t>(t.rule.size()) * t.n);
+  t.dN.resize(static_cast<size_t>(t.rule.size()) * t.n * d);
+  for (int q = 0; q < t.rule.size(); ++q)
+    eval_shape(d, kind, t.rule.point(q), &t.N[static_cast<size_t>(q) * t.n], &t.dN[static_cast<size_t>(q) * t.n * d]);
+  return t;
+}
+
+// Affine map of a cell: inverse Jacobian (dxi/dX) and |det|.
+template <int D>
+struct AffineCell {
+  Eigen::Matrix<double, D, D> inv;
+  double det;
+};
+
+template <int D>
+AffineCell<D> affine_cell(const mesh::Mesh& mesh, int c) {
+  Eigen::Matrix<double, D, D> J;
+  const int* v = mesh.cell(c);
+  for (int j = 0; j < D; ++j)
+    for (int i = 0; i < D; ++i) J(i, j) = mesh.vertex(v[j + 1])[i] - mesh.vertex(v[0])[i];
+  return {J.inverse(), J.determinant()};
+}
+
+// Physical gradients G (n x D) of the shape functions at one quadrature point.
+template <int D, int NB>
+void physical_gradients(const double* dNref, const Eigen::Matrix<double, D, D>& inv, double (&G)[NB][D]) {
+  for (int a = 0; a < NB; ++a)
+    for (int J = 0; J < D; ++J) {
+      double s = 0;
+      for (int j = 0; j < D; ++j) s += dNref[a * D + j] * inv(j, J);
+      G[a][J] = s;
+    }
+}
+
+// F = I + sum_a u_a (x) G_a, embedded in 3x3 (plane strain: F_33 = 1).
+template <int D, int NB>
+Mat3 deformation_gradient(const double (&ue)[NB][D], const double (&G)[NB][D]) {
+  Mat3 F = Mat3::Identity();
+  for (int a = 0; a < NB; ++a)
+    for (int i = 0; i < D; ++i)
+      for (int J = 0; J < D; ++J) F(i, J) += ue[a][i] * G[a][J];
+  return F;
+}
+
+template <int D, int NB>
+InternalForceStatus internal_kernel(const DisplacementSpace& space, const std::vector<const materials::Material*>& mat,
+                                    const std::vector<double>& u, std::vector<double>* residual, Mat tangent) {
+  constexpr int ND = NB * D;
+  const Tabulation tab = tabulate(D, space.kind(), 2);  // nodal and hierarchical P2 share NB
+  const mesh::Mesh& mesh = space.mesh();
+  InternalForceStatus status;
+  int nodes[NB];
+  PetscInt idx[ND];
+  double ue[NB][D], G[NB][D];
+  Eigen::Matrix<double, ND, ND, Eigen::RowMajor> Ke;
+  double re[ND];
+  double C[NB][D][D][D];  // C[b][i][J][k] = sum_L A_iJkL G_bL
+  materials::Tangent A;
+  Mat3 P;
+
+  for (int c = 0; c < mesh.n_cells(); ++c) {
+    space.cell_nodes(c, nodes);
+    for (int a = 0; a < NB; ++a)
+      for (int i = 0; i < D; ++i) {
+        idx[a * D + i] = nodes[a] * D + i;
+        ue[a][i] = u[static_cast<size_t>(nodes[a]) * D + i];
+      }
+    const AffineCell<D> geo = affine_cell<D>(mesh, c);
+    if (tangent) Ke.setZero();
+    std::fill(re, re + ND, 0.0);
+    for (int q = 0; q < tab.rule.size(); ++q) {
+      physical_gradients<D, NB>(&tab.dN[static_cast<size_t>(q) * NB * D], geo.inv, G);
+      const Mat3 F = deformation_gradient<D, NB>(ue, G);
+      const double detF = F.determinant();
+      status.min_jacobian = std::min(status.min_jacobian, detF);
+      if (!(detF > 0) && mat[c]->requires_positive_jacobian()) {
+        if (status.inverted_cell < 0) status.inverted_cell = c;
+        continue;
+      }
+      const double w = tab.rule.weights[q] * std::abs(geo.det);
+      if (!tangent) {
+        P = mat[c]->first_piola(F);
+      } else {
+        mat[c]->first_piola_and_tangent(F, P, A);
+        for (int b = 0; b < NB; ++b)
+          for (int i = 0; i < D; ++i)
+            for (int J = 0; J < D; ++J)
+              for (int k = 0; k < D; ++k) {
+                double s = 0;
+                for (int L = 0; L < D; ++L) s += A[materials::tangent_index(i, J, k, L)] * G[b][L];
+                C[b][i][J][k] = w * s;
+              }
+        // Major symmetry of A (hyperelastic): fill the upper block triangle, mirror below.
+        for (int a = 0; a < NB; ++a)
+          for (int b = a; b < NB; ++b)
+            for (int i = 0; i < D; ++i)
+              for (int k = 0; k < D; ++k) {
+                double s = 0;
+                for (int J = 0; J < D; ++J) s += G[a][J] * C[b][i][J][k];
+                Ke(a * D + i, b * D + k) += s;
+              }
+      }
+      for (int a = 0; a < NB; ++a)
+        for (int i = 0; i < D; ++i) {
+          double s = 0;
+          for (int J = 0; J < D; ++J) s += P(i, J) * G[a][J];
+          re[a * D + i] += w * s;
+        }
+    }
+    if (residual)
+      for (int k = 0; k < ND; ++k) (*residual)[idx[k]] += re[k];
+    if (tangent) {
+      for (int a = 0; a < NB; ++a)
+        for (int b = 0; b < a; ++b)
+          for (int i = 0; i < D; ++i)
+            for (int k = 0; k < D; ++k) Ke(a * D + i, b * D + k) = Ke(b * D + k, a * D + i);
+      STICTION_PETSC(MatSetValues(tangent, ND, idx, ND, idx, Ke.data(), ADD_VALUES));
+    }
+  }
+  return status;
+}
+
+template <class F>
+auto dispatch(const DisplacementSpace& space, F&& f) {
+  const bool quad = is_quadratic(space.kind());
+  switch (space.dim() * 10 + (quad ? 2 : 1)) {
+    case 21: return f(std::integral_constant<int, 2>{}, std::integral_constant<int, 3>{});
+    case 22: return f(std::integral_constant<int, 2>{}, std::integral_constant<int, 6>{});
+    case 31: return f(std::integral_constant<int, 3>{}, std::integral_constant<int, 4>{});
+    case 32: return f(std::integral_constant<int, 3>{}, std::integral_constant<int, 10>{});
+  }
+  throw Error(fmt::format("assembly: unsupported dimension {}", space.dim()), ErrorKind::Internal);
+}
+
+// Integrates residual -= int g(X) N_a over simplices of dimension sd given by vertex lists.
+void subtract_load(const DisplacementSpace& space, int sd, const std::vector<std::vector<int>>& simplex_nodes,
+                   const std::vector<const int*>& simplex_vertices, const VectorField& g,
+                   std::vector<double>& residual) {
+  const int d = space.dim();
+  const Tabulation tab = tabulate(sd, space.kind(), 4);
+  double X[3], val[3];
+  for (size_t s = 0; s < simplex_nodes.size(); ++s) {
+    const int* v = simplex_vertices[s];
+    const double* X0 = space.mesh().vertex(v[0]);
+    // Edge vectors of the simplex and its measure scale sqrt(det(E^T E)).
+    Eigen::MatrixXd E(d, sd);
+    for (int j = 0; j < sd; ++j)
+      for (int i = 0; i < d; ++i) E(i, j) = space.mesh().vertex(v[j + 1])[i] - X0[i];
+    const double scale = std::sqrt((E.transpose() * E).determinant());
+    for (int q = 0; q < tab.rule.size(); ++q) {
+      const double* xi = tab.rule.point(q);
+      for (int i = 0; i < d; ++i) {
+        X[i] = X0[i];
+        for (int j = 0; j < sd; ++j) X[i] += E(i, j) * xi[j];
+      }
+      g(X, val);
+      const double w = tab.rule.weights[q] * scale;
+      for (int a = 0; a < tab.n; ++a)
+        for (int i = 0; i < d; ++i)
+          residual[static_cast<size_t>(simplex_nodes[s][a]) * d + i] -= w * tab.N[static_cast<size_t>(q) * tab.n + a] * val[i];
+    }
+  }
+}
+
+}  // namespace
+
+Mat create_matrix(MPI_Comm comm, const DisplacementSpace& space) {
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  if (size != 1)
+    throw Error("stiction runs on one MPI rank for now (the mesh is not distributed yet)", ErrorKind::Input);
+  const int d = space.dim(), nn = space.n_nodes(), npc = space.nodes_per_cell();
+  std::vector<std::vector<int>> adj(nn);
+  std::vector<int> nodes(npc);
+  for (int c = 0; c < space.mesh().n_cells(); ++c) {
+    space.cell_nodes(c, nodes.data());
+    for (int a : nodes) adj[a].insert(adj[a].end(), nodes.begin(), nodes.end());
+  }
+  std::vector<PetscInt> rowptr{0}, cols;
+  for (int n = 0; n < nn; ++n) {
+    auto& row = adj[n];
+    std::sort(row.begin(), row.end());
+    row.erase(std::unique(row.begin(), row.end()), row.end());
+    for (int i = 0; i < d; ++i) {
+      for (int m : row)
+        for (int k = 0; k < d; ++k) cols.push_back(static_cast<PetscInt>(m) * d + k);
+      rowptr.push_back(static_cast<PetscInt>(cols.size()));
+    }
+    std::vector<int>().swap(row);
+  }
+  Mat A;
+  const PetscInt n = space.n_dofs();
+  STICTION_PETSC(MatCreate(comm, &A));
+  STICTION_PETSC(MatSetSizes(A, n, n, n, n));
+  STICTION_PETSC(MatSetType(A, MATAIJ));
+  STICTION_PETSC(MatSetBlockSize(A, d));
+  STICTION_PETSC(MatSeqAIJSetPreallocationCSR(A, rowptr.data(), cols.data(), nullptr));
+  STICTION_PETSC(MatMPIAIJSetPreallocationCSR(A, rowptr.data(), cols.data(), nullptr));
+  STICTION_PETSC(MatSetOption(A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  return A;
+}
+
+InternalForceStatus assemble_internal(const DisplacementSpace& space,
+                                      const std::vector<const materials::Material*>& cell_material,
+                                      const std::vector<double>& u, std::vector<double>* residual, Mat tangent) {
+  return dispatch(space, [&](auto D, auto NB) {
+    return internal_kernel<decltype(D)::value, decltype(NB)::value>(space, cell_material, u, residual, tangent);
+  });
+}
+
+void subtract_body_force(const DisplacementSpace& space, const VectorField& f, std::vector<double>& residual) {
+  const int nc = space.mesh().n_cells();
+  std::vector<std::vector<int>> nodes(nc, std::vector<int>(space.nodes_per_cell()));
+  std::vector<const int*> verts(nc);
+  for (int c = 0; c < nc; ++c) {
+    space.cell_nodes(c, nodes[c].data());
+    verts[c] = space.mesh().cell(c);
+  }
+  subtract_load(space, space.dim(), nodes, verts, f, residual);
+}
+
+void subtract_traction(const DisplacementSpace& space, int facet_tag, const VectorField& t,
+                       std::vector<double>& residual) {
+  std::vector<std::vector<int>> nodes;
+  std::vector<const int*> verts;
+  for (int f = 0; f < space.mesh().n_facets(); ++f) {
+    if (space.mesh().facet_tags[f] != facet_tag) continue;
+    nodes.emplace_back(space.nodes_per_facet());
+    space.facet_nodes(f, nodes.back().data());
+    verts.push_back(space.mesh().facet(f));
+  }
+  subtract_load(space, space.dim() - 1, nodes, verts, t, residual);
+}
+
+std::vector<double> cell_cauchy_stress(const DisplacementSpace& space,
+                                       const std::vector<const materials::Material*>& cell_material,
+                                       const std::vector<double>& u) {
+  return dispatch(space, [&](auto Dc, auto NBc) {
+    constexpr int D = decltype(Dc)::value, NB = decltype(NBc)::value;
+    std::vector<double> out;
+    out.reserve(static_cast<size_t>(space.mesh().n_cells()) * 9);
+    double centroid[D], N[NB], dN[NB * D], ue[NB][D], G[NB][D];
+    std::fill(centroid, centroid + D, 1.0 / (D + 1));
+    eval_shape(D, space.kind(), centroid, N, dN);
+    int nodes[NB];
+    for (int c = 0; c < space.mesh().n_cells(); ++c) {
+      space.cell_nodes(c, nodes);
+      for (int a = 0; a < NB; ++a)
+        for (int i = 0; i < D; ++i) ue[a][i] = u[static_cast<size_t>(nodes[a]) * D + i];
+      physical_gradients<D, NB>(dN, affine_cell<D>(space.mesh(), c).inv, G);
+      const Mat3 sigma = cell_material[c]->cauchy(deformation_gradient<D, NB>(ue, G));
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) out.push_back(sigma(i, j));
+    }
+    return out;
+  });
+}
+
+}  // namespace stiction::fem

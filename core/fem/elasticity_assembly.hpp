@@ -1,0 +1,44 @@
+#pragma once
+// Assembly of the hyperelastic residual and consistent tangent (paper (1), total Lagrangian):
+//   R_a = int_Omega P(F) . grad_X N_a  -  int_Omega f N_a  -  int_Gamma_N t N_a
+//   K_ab(i,k) = int_Omega A_iJkL dN_a/dX_J dN_b/dX_L
+// The internal part loops over cells with a kernel specialised for the dimension and the
+// number of shape functions; loads are dead loads on the reference configuration.
+#include <petscmat.h>
+
+#include <vector>
+
+#include "fem/displacement_space.hpp"
+#include "materials/material.hpp"
+
+namespace stiction::fem {
+
+// Matrix with the exact nonzero pattern of the space (block size = dim), zero-valued.
+// Created on `comm`; today every rank holds the whole mesh, so only one rank is supported.
+Mat create_matrix(MPI_Comm comm, const DisplacementSpace& space);
+
+struct InternalForceStatus {
+  double min_jacobian = 1.0;  // smallest det F met at a quadrature point
+  int inverted_cell = -1;     // first cell with det F <= 0 for a finite-strain law, or -1
+};
+
+// Adds the internal force vector (residual may be null) and the tangent (tangent may be
+// null; values are ADDED, the caller assembles) for the coefficient vector u.
+// cell_material[c] is the law of cell c.
+InternalForceStatus assemble_internal(const DisplacementSpace& space,
+                                      const std::vector<const materials::Material*>& cell_material,
+                                      const std::vector<double>& u, std::vector<double>* residual,
+                                      Mat tangent);
+
+// residual -= int_Omega f N_a (f may vary in space).
+void subtract_body_force(const DisplacementSpace& space, const VectorField& f, std::vector<double>& residual);
+// residual -= int_{facets with tag} t N_a.
+void subtract_traction(const DisplacementSpace& space, int facet_tag, const VectorField& t,
+                       std::vector<double>& residual);
+
+// Cauchy stress (3x3, row-major) at each cell's centroid, for output.
+std::vector<double> cell_cauchy_stress(const DisplacementSpace& space,
+                                       const std::vector<const materials::Material*>& cell_material,
+                                       const std::vector<double>& u);
+
+}  // namespace stiction::fem

@@ -1,0 +1,72 @@
+#pragma once
+// Hyperelastic material laws, total Lagrangian. Every law is written in 3D on the
+// deformation gradient F; a 2D plane-strain problem embeds F with F_33 = 1 and keeps the
+// in-plane components of P and of the tangent (see plane.hpp).
+//
+// Quantities per reference volume:
+//   energy Psi(F), first Piola-Kirchhoff stress P = dPsi/dF = F S,
+//   tangent A_iJkL = dP_iJ / dF_kL (81 entries, index ((i*3 + J)*3 + k)*3 + L).
+// A mixed (displacement-pressure) law will extend this interface with the pressure terms.
+#include <Eigen/Dense>
+
+#include <array>
+#include <memory>
+#include <string>
+
+namespace stiction::materials {
+
+using Mat3 = Eigen::Matrix3d;
+using Tangent = std::array<double, 81>;
+inline int tangent_index(int i, int J, int k, int L) { return ((i * 3 + J) * 3 + k) * 3 + L; }
+
+class Material {
+public:
+  virtual ~Material() = default;
+  virtual std::string name() const = 0;
+  virtual std::string describe() const = 0;  // law and parameters, for reports
+  virtual double energy(const Mat3& F) const = 0;
+  virtual Mat3 first_piola(const Mat3& F) const = 0;
+  virtual void first_piola_and_tangent(const Mat3& F, Mat3& P, Tangent& A) const = 0;
+  // Cauchy stress sigma = P F^T / J (the small-strain law returns its stress as is).
+  virtual Mat3 cauchy(const Mat3& F) const { return first_piola(F) * F.transpose() / F.determinant(); }
+  // True when the law is only valid for det F > 0 (finite strain).
+  virtual bool requires_positive_jacobian() const { return true; }
+};
+
+// Small-strain linear elasticity: P = lambda tr(eps) I + 2 mu eps, eps = sym(F - I).
+class LinearElastic final : public Material {
+public:
+  LinearElastic(double E, double nu);
+  std::string name() const override { return "linear"; }
+  std::string describe() const override;
+  double energy(const Mat3& F) const override;
+  Mat3 first_piola(const Mat3& F) const override;
+  void first_piola_and_tangent(const Mat3& F, Mat3& P, Tangent& A) const override;
+  Mat3 cauchy(const Mat3& F) const override { return first_piola(F); }
+  bool requires_positive_jacobian() const override { return false; }
+
+private:
+  double E_, nu_, lambda_, mu_;
+};
+
+// Compressible Neo-Hookean in Wriggers' form (paper Sec. 2.1, paper-notes 1):
+//   Psi = mu/2 (I1 - 3) + Lambda/4 (J^2 - 1) - (Lambda/2 + mu) ln J
+//   P   = mu F + (Lambda/2 (J^2 - 1) - mu) F^-T
+class NeoHookean final : public Material {
+public:
+  NeoHookean(double E, double nu);
+  std::string name() const override { return "neo-hookean"; }
+  std::string describe() const override;
+  double energy(const Mat3& F) const override;
+  Mat3 first_piola(const Mat3& F) const override;
+  void first_piola_and_tangent(const Mat3& F, Mat3& P, Tangent& A) const override;
+
+private:
+  double E_, nu_, lambda_, mu_;
+};
+
+// Lame parameters from Young's modulus and Poisson's ratio; throws on E <= 0 or
+// nu outside (-1, 0.5).
+void lame_parameters(double E, double nu, double& lambda, double& mu);
+
+}  // namespace stiction::materials

@@ -1,0 +1,36 @@
+#pragma once
+// What the Newton driver needs from a linear solver. The backends (solvers/) implement it
+// and register by name; the driver sees only this interface.
+#include <map>
+#include <memory>
+#include <string>
+
+#include "nonlinear/newton_system.hpp"
+
+namespace stiction::nonlinear {
+
+struct LinearSolveStats {
+  bool converged = false;
+  std::string reason;             // PETSc's converged reason, e.g. CONVERGED_RTOL
+  int iterations = 0;             // Krylov iterations (0 for a direct solve)
+  double initial_residual = 0;    // ||b|| (true residual of the zero guess)
+  double final_residual = 0;      // ||b - A x|| recomputed after the solve
+  double setup_seconds = 0;       // factorisation / preconditioner set-up for this system
+  double solve_seconds = 0;
+  std::map<std::string, double> extra;  // backend figures: MUMPS memory, AMG complexity, ...
+};
+
+class LinearSolver {
+public:
+  virtual ~LinearSolver() = default;
+  virtual std::string name() const = 0;
+  // Factorise / build the preconditioner for this system's matrix.
+  virtual void setup(const NewtonSystem& system) = 0;
+  // Solve system.matrix x = system.rhs with the last set-up; never throws for a
+  // non-converged solve: the reason is in the statistics.
+  virtual LinearSolveStats solve(const NewtonSystem& system, Vec x) = 0;
+  // The solver's own description (KSPView), for reports.
+  virtual std::string describe() const = 0;
+};
+
+}  // namespace stiction::nonlinear

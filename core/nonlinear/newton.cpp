@@ -1,0 +1,327 @@
+#include "nonlinear/newton.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/error.hpp"
+#include "fem/elasticity_assembly.hpp"
+
+namespace stiction::nonlinear {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void copy_to_vec(const std::vector<double>& src, Vec dst) {
+  PetscScalar* a;
+  STICTION_PETSC(VecGetArray(dst, &a));
+  std::copy(src.begin(), src.end(), a);
+  STICTION_PETSC(VecRestoreArray(dst, &a));
+}
+
+}  // namespace
+
+std::string to_string(NewtonReason r) {
+  switch (r) {
+    case NewtonReason::ConvergedAbsolute: return "CONVERGED_ATOL";
+    case NewtonReason::ConvergedRelative: return "CONVERGED_RTOL";
+    case NewtonReason::DivergedMaxIterations: return "DIVERGED_MAX_ITERATIONS";
+    case NewtonReason::DivergedLinearSolver: return "DIVERGED_LINEAR_SOLVE";
+    case NewtonReason::DivergedInvertedElement: return "DIVERGED_INVERTED_ELEMENT";
+    case NewtonReason::DivergedNaN: return "DIVERGED_NAN";
+    case NewtonReason::DivergedResidualGrowth: return "DIVERGED_RESIDUAL_GROWTH";
+  }
+  return "UNKNOWN";
+}
+
+MatNullSpace rigid_body_modes(MPI_Comm comm, const fem::DisplacementSpace& space) {
+  const int d = space.dim();
+  const mesh::Mesh& m = space.mesh();
+  double c[3] = {0, 0, 0};  // rotate about the centroid: better-conditioned modes
+  for (int v = 0; v < m.n_vertices(); ++v)
+    for (int k = 0; k < d; ++k) c[k] += m.vertex(v)[k] / m.n_vertices();
+  const int n_modes = d == 2 ? 3 : 6;
+  std::vector<std::vector<double>> modes(n_modes);
+  for (int mode = 0; mode < n_modes; ++mode) {
+    space.interpolate(
+        [&](const double* X, double* out) {
+          const double x = X[0] - c[0], y = X[1] - c[1], z = d == 3 ? X[2] - c[2] : 0.0;
+          std::fill(out, out + d, 0.0);
+          if (mode < d) {
+            out[mode] = 1;
+          } else if (d == 2) {
+            out[0] = -y, out[1] = x;
+          } else if (mode == 3) {
+            out[1] = -z, out[2] = y;
+          } else if (mode == 4) {
+            out[0] = z, out[2] = -x;
+          } else {
+            out[0] = -y, out[1] = x;
+          }
+        },
+        modes[mode]);
+  }
+  // Modified Gram-Schmidt: MatNullSpaceCreate requires orthonormal vectors.
+  for (int i = 0; i < n_modes; ++i) {
+    for (int j = 0; j < i; ++j) {
+      double dot = 0;
+      for (size_t k = 0; k < modes[i].size(); ++k) dot += modes[i][k] * modes[j][k];
+      for (size_t k = 0; k < modes[i].size(); ++k) modes[i][k] -= dot * modes[j][k];
+    }
+    double nrm = 0;
+    for (double v : modes[i]) nrm += v * v;
+    nrm = std::sqrt(nrm);
+    for (double& v : modes[i]) v /= nrm;
+  }
+  std::vector<Vec> vecs(n_modes);
+  for (int i = 0; i < n_modes; ++i) {
+    STICTION_PETSC(VecCreateMPI(comm, space.n_dofs(), space.n_dofs(), &vecs[i]));
+    STICTION_PETSC(VecSetBlockSize(vecs[i], d));
+    copy_to_vec(modes[i], vecs[i]);
+  }
+  MatNullSpace nsp;
+  STICTION_PETSC(MatNullSpaceCreate(comm, PETSC_FALSE, n_modes, vecs.data(), &nsp));
+  for (Vec& v : vecs) VecDestroy(&v);
+  return nsp;
+}
+
+QuasiStaticSolver::QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& problem, const NewtonSettings& settings,
+                                     LinearSolver& linear)
+    : comm_(comm), problem_(problem), settings_(settings), linear_(linear) {
+  const fem::DisplacementSpace& space = *problem.space;
+  if (static_cast<int>(problem.cell_material.size()) != space.mesh().n_cells())
+    throw Error("problem: one material per cell expected", ErrorKind::Internal);
+  u_.assign(space.n_dofs(), 0.0);
+  system_.comm = comm;
+  system_.block_size = space.dim();
+  *system_.matrix.out() = fem::create_matrix(comm, space);
+  STICTION_PETSC(MatCreateVecs(system_.matrix, nullptr, system_.rhs.out()));
+  auto add_field = [&](const char* name, std::pair<int, int> range) {
+    FieldBlock f{name, {}, space.dim()};
+    STICTION_PETSC(ISCreateStride(comm, range.second - range.first, range.first, 1, f.is.out()));
+    STICTION_PETSC(ISSetBlockSize(f.is, space.dim()));
+    system_.fields.push_back(std::move(f));
+  };
+  add_field("u_l", space.linear_block());
+  if (fem::is_quadratic(space.kind())) add_field("u_q", space.quadratic_block());
+  *system_.near_null_space.out() = rigid_body_modes(comm, space);
+  STICTION_PETSC(MatSetNearNullSpace(system_.matrix, system_.near_null_space));
+  build_constraints();
+}
+
+void QuasiStaticSolver::build_constraints() {
+  const fem::DisplacementSpace& space = *problem_.space;
+  const int d = space.dim();
+  is_constrained_.assign(space.n_dofs(), 0);
+  std::vector<int> nodes(space.nodes_per_facet());
+  for (const auto& bc : problem_.dirichlet) {
+    std::vector<int> bc_nodes;
+    for (int f = 0; f < space.mesh().n_facets(); ++f) {
+      if (space.mesh().facet_tags[f] != bc.facet_tag) continue;
+      space.facet_nodes(f, nodes.data());
+      bc_nodes.insert(bc_nodes.end(), nodes.begin(), nodes.end());
+    }
+    std::sort(bc_nodes.begin(), bc_nodes.end());
+    bc_nodes.erase(std::unique(bc_nodes.begin(), bc_nodes.end()), bc_nodes.end());
+    if (bc_nodes.empty()) throw Error(fmt::format("Dirichlet condition '{}': its boundary has no facets", bc.name));
+    for (int n : bc_nodes)
+      for (int c : bc.components) is_constrained_[static_cast<size_t>(n) * d + c] = 1;
+    bc_nodes_.push_back(std::move(bc_nodes));
+  }
+  for (int i = 0; i < space.n_dofs(); ++i)
+    if (is_constrained_[i]) constrained_.push_back(i);
+}
+
+fem::InternalForceStatus QuasiStaticSolver::residual(int step, const std::vector<double>& u,
+                                                     std::vector<double>& r) const {
+  const fem::DisplacementSpace& space = *problem_.space;
+  r.assign(space.n_dofs(), 0.0);
+  auto status = fem::assemble_internal(space, problem_.cell_material, u, &r, nullptr);
+  if (problem_.body_force)
+    fem::subtract_body_force(space, [&](const double* X, double* out) { problem_.body_force(X, step, out); }, r);
+  for (const auto& t : problem_.tractions)
+    fem::subtract_traction(space, t.facet_tag, [&](const double* X, double* out) { t.value(X, step, out); }, r);
+  return status;
+}
+
+double QuasiStaticSolver::free_norm(const std::vector<double>& r) const {
+  double s = 0;
+  for (size_t i = 0; i < r.size(); ++i)
+    if (!is_constrained_[i]) s += r[i] * r[i];
+  return std::sqrt(s);
+}
+
+std::map<std::string, std::array<double, 3>> QuasiStaticSolver::reactions(const std::vector<double>& r) const {
+  const fem::DisplacementSpace& space = *problem_.space;
+  const int d = space.dim();
+  std::map<std::string, std::array<double, 3>> out;
+  for (size_t b = 0; b < problem_.dirichlet.size(); ++b) {
+    std::array<double, 3> f{0, 0, 0};
+    // Total force = sum_i w_i r_i with w the coefficients of the constant 1 (see space).
+    for (int n : bc_nodes_[b])
+      for (int k = 0; k < d; ++k) f[k] += space.unit_weight(n) * r[static_cast<size_t>(n) * d + k];
+    out[problem_.dirichlet[b].name] = f;
+  }
+  return out;
+}
+
+void QuasiStaticSolver::assemble_system(int step, const std::vector<double>& r, bool lift) {
+  Mat A = system_.matrix;
+  STICTION_PETSC(MatZeroEntries(A));
+  fem::assemble_internal(*problem_.space, problem_.cell_material, u_, nullptr, A);
+  STICTION_PETSC(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+  STICTION_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  std::vector<double> b(r.size());
+  for (size_t i = 0; i < r.size(); ++i) b[i] = -r[i];
+  copy_to_vec(b, system_.rhs);
+  // Constrained rows and columns become identity; the right side takes the prescribed
+  // increment on them and, through the removed columns, its effect on the free rows.
+  PetscVec x;
+  STICTION_PETSC(VecDuplicate(system_.rhs, x.out()));
+  STICTION_PETSC(VecZeroEntries(x));
+  if (lift)
+    for (size_t k = 0; k < constrained_.size(); ++k)
+      STICTION_PETSC(VecSetValue(x, constrained_[k], target_[k] - u_[constrained_[k]], INSERT_VALUES));
+  STICTION_PETSC(VecAssemblyBegin(x));
+  STICTION_PETSC(VecAssemblyEnd(x));
+  STICTION_PETSC(MatZeroRowsColumns(A, static_cast<PetscInt>(constrained_.size()), constrained_.data(), 1.0, x, system_.rhs));
+  (void)step;
+}
+
+StepResult QuasiStaticSolver::solve_step(int step) {
+  const auto t_step = std::chrono::steady_clock::now();
+  const fem::DisplacementSpace& space = *problem_.space;
+  const int d = space.dim();
+  StepResult res;
+  res.step = step;
+
+  // Prescribed values of this step on every constrained dof (last condition wins).
+  std::vector<double> full_target(space.n_dofs(), 0.0);
+  for (size_t b = 0; b < problem_.dirichlet.size(); ++b) {
+    const auto& bc = problem_.dirichlet[b];
+    double val[3];
+    for (int n : bc_nodes_[b]) {
+      space.interpolate_node([&](const double* X, double* out) { bc.value(X, step, out); }, n, val);
+      for (int c : bc.components) full_target[static_cast<size_t>(n) * d + c] = val[c];
+    }
+  }
+  target_.resize(constrained_.size());
+  for (size_t k = 0; k < constrained_.size(); ++k) target_[k] = full_target[constrained_[k]];
+  auto lift_pending = [&] {
+    for (size_t k = 0; k < constrained_.size(); ++k)
+      if (u_[constrained_[k]] != target_[k]) return true;
+    return false;
+  };
+
+  std::vector<double> r, trial, rt;
+  auto t0 = std::chrono::steady_clock::now();
+  const auto st0 = residual(step, u_, r);
+  double asm_seconds = seconds_since(t0);
+  if (st0.inverted_cell >= 0)
+    throw Error(fmt::format("load step {}: cell {} is inverted at the start of the step", step, st0.inverted_cell),
+                ErrorKind::Numerical);
+  double rnorm = free_norm(r);
+  res.initial_residual = res.reference_residual = res.final_residual = rnorm;
+  auto finish = [&](NewtonReason why) {
+    res.reason = why;
+    res.final_residual = rnorm;
+    if (res.converged()) res.reactions = reactions(r);
+    res.wall_seconds = seconds_since(t_step);
+    return res;
+  };
+
+  PetscVec du;
+  STICTION_PETSC(VecDuplicate(system_.rhs, du.out()));
+  for (int it = 0;; ++it) {
+    const bool pending = lift_pending();
+    if (!pending && it > 0) {
+      if (rnorm <= settings_.atol) return finish(NewtonReason::ConvergedAbsolute);
+      if (rnorm <= settings_.rtol * res.reference_residual) return finish(NewtonReason::ConvergedRelative);
+    }
+    if (!pending && it == 0 && rnorm <= settings_.atol) return finish(NewtonReason::ConvergedAbsolute);
+    if (it == settings_.max_iterations) {
+      res.detail = fmt::format("{} iterations, residual {:.3e} above tolerance {:.3e}", it, rnorm,
+                               std::max(settings_.atol, settings_.rtol * res.reference_residual));
+      return finish(NewtonReason::DivergedMaxIterations);
+    }
+
+    NewtonIteration rec;
+    t0 = std::chrono::steady_clock::now();
+    assemble_system(step, r, pending);
+    rec.assembly_seconds = asm_seconds + seconds_since(t0);
+    if (it == 0) {
+      PetscReal bnorm;  // free part: the lifted system's right side minus its prescribed rows
+      std::vector<double> b(space.n_dofs());
+      const PetscScalar* a;
+      STICTION_PETSC(VecGetArrayRead(system_.rhs, &a));
+      std::copy(a, a + space.n_dofs(), b.begin());
+      STICTION_PETSC(VecRestoreArrayRead(system_.rhs, &a));
+      bnorm = free_norm(b);
+      res.reference_residual = std::max(rnorm, static_cast<double>(bnorm));
+    }
+
+    linear_.setup(system_);
+    rec.linear = linear_.solve(system_, du);
+    if (!rec.linear.converged) {
+      res.iterations.push_back(rec);
+      res.detail = fmt::format("linear solver {} stopped with {}", linear_.name(), rec.linear.reason);
+      return finish(NewtonReason::DivergedLinearSolver);
+    }
+    std::vector<double> dv(space.n_dofs());
+    {
+      const PetscScalar* a;
+      STICTION_PETSC(VecGetArrayRead(du, &a));
+      std::copy(a, a + space.n_dofs(), dv.begin());
+      STICTION_PETSC(VecRestoreArrayRead(du, &a));
+    }
+
+    // Backtracking: halve the step while the trial state inverts a cell or is not finite.
+    double alpha = 1;
+    for (int bt = 0;; ++bt) {
+      trial = u_;
+      for (size_t i = 0; i < dv.size(); ++i) trial[i] += alpha * dv[i];
+      if (alpha == 1)
+        for (size_t k = 0; k < constrained_.size(); ++k) trial[constrained_[k]] = target_[k];  // exact, free of round-off
+      t0 = std::chrono::steady_clock::now();
+      const auto st = residual(step, trial, rt);
+      asm_seconds = seconds_since(t0);
+      const double tn = free_norm(rt);
+      if (st.inverted_cell < 0 && std::isfinite(tn)) break;
+      if (bt == settings_.max_backtracks) {
+        res.iterations.push_back(rec);
+        const bool nan = st.inverted_cell < 0;
+        res.detail = nan ? "the residual is not finite after every step reduction"
+                         : fmt::format("cell {} inverts (det F <= 0) even after {} step halvings", st.inverted_cell, bt);
+        return finish(nan ? NewtonReason::DivergedNaN : NewtonReason::DivergedInvertedElement);
+      }
+      alpha *= 0.5;
+    }
+    u_.swap(trial);
+    r.swap(rt);
+    rnorm = free_norm(r);
+    rec.residual = rnorm;
+    rec.step_length = alpha;
+    res.iterations.push_back(rec);
+    if (rnorm > settings_.divergence_factor * res.reference_residual) {
+      res.detail = fmt::format("residual {:.3e} grew beyond {:g} x the reference {:.3e}", rnorm,
+                               settings_.divergence_factor, res.reference_residual);
+      return finish(NewtonReason::DivergedResidualGrowth);
+    }
+  }
+}
+
+std::vector<StepResult> QuasiStaticSolver::run(const std::function<void(const StepResult&)>& on_step) {
+  std::vector<StepResult> all;
+  for (int s = 1; s <= problem_.n_steps; ++s) {
+    all.push_back(solve_step(s));
+    if (on_step) on_step(all.back());
+    if (!all.back().converged()) break;
+  }
+  return all;
+}
+
+}  // namespace stiction::nonlinear

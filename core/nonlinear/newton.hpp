@@ -1,0 +1,104 @@
+#pragma once
+// Quasi-static load stepping with Newton's method on the hyperelastic residual.
+//
+// Dirichlet values enter through the first linear system of each step (lifting): the
+// increment on constrained dofs is prescribed, the matrix keeps its symmetry
+// (MatZeroRowsColumns), so the predictor is the linearised response to the new boundary
+// values instead of a jump that can invert boundary cells.
+//
+// Convergence: ||r_free|| <= max(atol, rtol * r_ref), where r_ref is the larger of the
+// step's initial free residual and the right side of its first (lifted) system, i.e. the
+// size of the load increment. Every stop without convergence carries a named reason.
+#include <array>
+#include <chrono>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "fem/elasticity_assembly.hpp"
+#include "nonlinear/linear_solver.hpp"
+#include "nonlinear/problem.hpp"
+
+namespace stiction::nonlinear {
+
+struct NewtonSettings {
+  double atol = 1e-10;          // absolute tolerance on the free residual norm
+  double rtol = 1e-8;           // relative to the step's reference residual
+  int max_iterations = 25;
+  int max_backtracks = 10;      // step halvings when a trial state inverts a cell or is NaN
+  double divergence_factor = 1e8;  // residual above this times r_ref: diverged
+};
+
+enum class NewtonReason {
+  ConvergedAbsolute,
+  ConvergedRelative,
+  DivergedMaxIterations,
+  DivergedLinearSolver,
+  DivergedInvertedElement,
+  DivergedNaN,
+  DivergedResidualGrowth,
+};
+std::string to_string(NewtonReason r);
+inline bool converged(NewtonReason r) {
+  return r == NewtonReason::ConvergedAbsolute || r == NewtonReason::ConvergedRelative;
+}
+
+struct NewtonIteration {
+  double residual = 0;          // free residual after the update
+  double step_length = 1;       // after backtracking
+  double assembly_seconds = 0;  // residual + tangent for this iteration
+  LinearSolveStats linear;
+};
+
+struct StepResult {
+  int step = 0;
+  NewtonReason reason = NewtonReason::DivergedMaxIterations;
+  double initial_residual = 0, reference_residual = 0, final_residual = 0;
+  std::vector<NewtonIteration> iterations;
+  std::map<std::string, std::array<double, 3>> reactions;  // per Dirichlet condition
+  double wall_seconds = 0;
+  std::string detail;  // human-readable context for a failure
+  bool converged() const { return nonlinear::converged(reason); }
+};
+
+class QuasiStaticSolver {
+public:
+  QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& problem, const NewtonSettings& settings,
+                    LinearSolver& linear);
+
+  // Newton for one load step, starting from the current state.
+  StepResult solve_step(int step);
+  // Steps 1..n_steps; calls on_step after each; stops at the first failed step.
+  std::vector<StepResult> run(const std::function<void(const StepResult&)>& on_step = {});
+
+  const std::vector<double>& displacement() const { return u_; }
+  std::vector<double>& displacement() { return u_; }
+  // Full residual r(u) = f_int - f_ext at `step` (constrained rows included), and status.
+  fem::InternalForceStatus residual(int step, const std::vector<double>& u, std::vector<double>& r) const;
+  // The last assembled Newton system (for record/replay and tests).
+  const NewtonSystem& system() const { return system_; }
+
+private:
+  void build_constraints();
+  void assemble_system(int step, const std::vector<double>& r, bool lift);
+  double free_norm(const std::vector<double>& r) const;
+  std::map<std::string, std::array<double, 3>> reactions(const std::vector<double>& r) const;
+
+  MPI_Comm comm_;
+  const ElasticityProblem& problem_;
+  NewtonSettings settings_;
+  LinearSolver& linear_;
+  std::vector<double> u_;
+  NewtonSystem system_;
+  std::vector<PetscInt> constrained_;         // sorted constrained dofs
+  std::vector<char> is_constrained_;          // per dof
+  std::vector<std::vector<int>> bc_nodes_;    // per Dirichlet condition
+  std::vector<double> target_;                // prescribed values, per constrained dof (this step)
+};
+
+// Rigid-body modes of the space (translations, rotations about the origin) interpolated in
+// its basis and orthonormalised: the near-null space handed to AMG.
+MatNullSpace rigid_body_modes(MPI_Comm comm, const fem::DisplacementSpace& space);
+
+}  // namespace stiction::nonlinear

@@ -1,0 +1,34 @@
+#pragma once
+// One Newton system as the linear-solver backends see it: the matrix (block size = dim for
+// the displacement field), the right side, named field index sets (u_l, u_q; later p,
+// lambda) so a backend can split it, and the rigid-body near-null space of the
+// displacement field. The same object is recorded and replayed.
+#include <string>
+#include <vector>
+
+#include "common/petsc.hpp"
+
+namespace stiction::nonlinear {
+
+struct FieldBlock {
+  std::string name;  // "u_l", "u_q", ...
+  PetscIS is;        // global indices of the block
+  int block_size = 1;
+};
+
+struct NewtonSystem {
+  MPI_Comm comm = PETSC_COMM_WORLD;
+  PetscMat matrix;
+  PetscVec rhs;
+  std::vector<FieldBlock> fields;
+  PetscNullSpace near_null_space;  // rigid-body modes of the displacement (also on matrix)
+  int block_size = 1;
+
+  const FieldBlock* field(const std::string& name) const {
+    for (const auto& f : fields)
+      if (f.name == name) return &f;
+    return nullptr;
+  }
+};
+
+}  // namespace stiction::nonlinear

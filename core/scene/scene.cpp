@@ -1,0 +1,306 @@
+#include "scene/scene.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "common/error.hpp"
+#include "mesh/gmsh_io.hpp"
+
+namespace stiction::scene {
+
+namespace {
+
+using VT = ValueType;
+
+// Every key of a scene file, with its type, default and a one-line doc.
+struct Schemas {
+  TableSpec scene_meta, material, mesh, body, dirichlet, traction, body_force, load, newton, output, root;
+  Schemas() {
+    scene_meta = {"scene",
+                  {{"name", VT::String, "scene name (defaults to the file name)", false, std::string()},
+                   {"description", VT::String, "one line on what the scene shows", false, std::string()},
+                   {"basis", VT::String, "displacement basis", false, std::string("p2-hierarchical"),
+                    {"p2-hierarchical", "p2-nodal", "p1"}},
+                   {"level", VT::Integer, "uniform refinements of the level-0 meshes (--level overrides)", false,
+                    std::int64_t{0}}}};
+    material = {"material",
+                {{"name", VT::String, "name bodies refer to", true},
+                 {"model", VT::String, "constitutive law", true, {}, {"linear", "neo-hookean"}},
+                 {"E", VT::Float, "Young's modulus", true},
+                 {"nu", VT::Float, "Poisson's ratio", true}}};
+    mesh = {"mesh",
+            {{"file", VT::String, "Gmsh .msh file (version 4), relative to the scene file", false},
+             {"generator", VT::String, "built-in geometry instead of a file", false, {}, {"box", "structured-box"}},
+             {"size", VT::FloatArray, "box side lengths [lx, ly] (2D) or [lx, ly, lz] (3D)", false},
+             {"h", VT::Float, "target element size for the 'box' generator (Gmsh)", false},
+             {"cells", VT::FloatArray, "cells per side for 'structured-box'", false}}};
+    body = {"body",
+            {{"name", VT::String, "body name (prefix of its boundary names: 'block/top')", true},
+             {"material", VT::String, "name of a [[material]]", true},
+             {"mesh", VT::Table, "where the level-0 mesh comes from", true, {}, {}, &mesh}}};
+    dirichlet = {"dirichlet",
+                 {{"body", VT::String, "body of the boundary (optional with one body)", false},
+                  {"boundary", VT::String, "boundary name (physical group) of the body", true},
+                  {"components", VT::StringArray, "constrained components", true, {}, {"x", "y", "z"}},
+                  {"value", VT::FloatArray, "final prescribed displacement, one per listed component", true},
+                  {"schedule", VT::FloatArray, "factor on value at each step (default k/steps)", false}}};
+    traction = {"traction",
+                {{"body", VT::String, "body of the boundary (optional with one body)", false},
+                 {"boundary", VT::String, "boundary name (physical group) of the body", true},
+                 {"value", VT::FloatArray, "final dead-load traction per reference area, one per dimension", true},
+                 {"schedule", VT::FloatArray, "factor on value at each step (default k/steps)", false}}};
+    body_force = {"body_force",
+                  {{"value", VT::FloatArray, "final body force per reference volume", true},
+                   {"schedule", VT::FloatArray, "factor on value at each step (default k/steps)", false}}};
+    load = {"load", {{"steps", VT::Integer, "number of quasi-static load steps", false, std::int64_t{1}}}};
+    newton = {"newton",
+              {{"atol", VT::Float, "absolute tolerance on the free residual norm", false, 1e-10},
+               {"rtol", VT::Float, "tolerance relative to the step's reference residual", false, 1e-8},
+               {"max_iterations", VT::Integer, "Newton iterations per load step", false, std::int64_t{25}},
+               {"max_backtracks", VT::Integer, "step halvings when a trial state inverts a cell", false,
+                std::int64_t{10}}}};
+    output = {"output",
+              {{"vtu", VT::Boolean, "write a VTU per load step and a PVD collection", false, true},
+               {"csv", VT::Boolean, "write per-step quantities as CSV", false, true}}};
+    root = {"",
+            {{"scene", VT::Table, "name and description", false, {}, {}, &scene_meta},
+             {"material", VT::TableArray, "constitutive laws", true, {}, {}, &material},
+             {"body", VT::TableArray, "deformable bodies", true, {}, {}, &body},
+             {"dirichlet", VT::TableArray, "prescribed displacements", false, {}, {}, &dirichlet},
+             {"traction", VT::TableArray, "prescribed tractions", false, {}, {}, &traction},
+             {"body_force", VT::Table, "volume load", false, {}, {}, &body_force},
+             {"load", VT::Table, "load stepping", false, {}, {}, &load},
+             {"newton", VT::Table, "Newton settings", false, {}, {}, &newton},
+             {"output", VT::Table, "what `stiction solve` writes", false, {}, {}, &output}}};
+  }
+};
+
+const Schemas& schemas() {
+  static const Schemas s;
+  return s;
+}
+
+const toml::table& sub(const toml::table& t, const char* key) {
+  static const toml::table empty;
+  const toml::table* p = t[key].as_table();
+  return p ? *p : empty;
+}
+
+std::vector<const toml::table*> tables(const toml::table& t, const char* key) {
+  std::vector<const toml::table*> out;
+  if (const auto* a = t[key].as_array())
+    for (const auto& e : *a) out.push_back(e.as_table());
+  return out;
+}
+
+std::unique_ptr<materials::Material> make_material(const toml::table& t, const std::string& file) {
+  const auto& S = schemas().material;
+  const std::string model = get_string(t, S, "model");
+  const double E = get_float(t, S, "E"), nu = get_float(t, S, "nu");
+  try {
+    if (model == "linear") return std::make_unique<materials::LinearElastic>(E, nu);
+    return std::make_unique<materials::NeoHookean>(E, nu);
+  } catch (const Error& e) {
+    throw Error(fmt::format("{}: material '{}': {}", file, get_string(t, S, "name"), e.what()));
+  }
+}
+
+mesh::Mesh make_body_mesh(const toml::table& t, const std::string& file, const std::string& base_dir,
+                          const std::string& body) {
+  const auto& S = schemas().mesh;
+  const bool has_file = t.contains("file"), has_gen = t.contains("generator");
+  if (has_file == has_gen)
+    throw Error(fmt::format("{}: body '{}': give exactly one of mesh.file and mesh.generator", file, body));
+  if (has_file) {
+    std::filesystem::path p = get_string(t, S, "file");
+    if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
+    return mesh::read_msh(p.string());
+  }
+  const std::string gen = get_string(t, S, "generator");
+  const auto size = get_floats(t, "size");
+  if (size.size() != 2 && size.size() != 3)
+    throw Error(fmt::format("{}: body '{}': mesh.size needs 2 (2D) or 3 (3D) lengths", file, body));
+  const int dim = static_cast<int>(size.size());
+  std::array<double, 3> L{size[0], size[1], dim == 3 ? size[2] : 0.0};
+  if (gen == "box") {
+    if (!t.contains("h")) throw Error(fmt::format("{}: body '{}': the 'box' generator needs mesh.h", file, body));
+    return mesh::generate_box(dim, L, get_float(t, S, "h"));
+  }
+  const auto cells = get_floats(t, "cells");
+  if (static_cast<int>(cells.size()) != dim)
+    throw Error(fmt::format("{}: body '{}': 'structured-box' needs mesh.cells with {} entries", file, body, dim));
+  std::array<int, 3> n{1, 1, 1};
+  for (int k = 0; k < dim; ++k) {
+    n[k] = static_cast<int>(cells[k]);
+    if (n[k] < 1 || n[k] != cells[k]) throw Error(fmt::format("{}: body '{}': mesh.cells must be positive integers", file, body));
+  }
+  return mesh::structured_box(dim, L, n);
+}
+
+// Per-step factor: schedule[step-1], or step/steps when no schedule is given.
+std::vector<double> schedule_of(const toml::table& t, int n_steps, const std::string& file, const std::string& what) {
+  std::vector<double> s = get_floats(t, "schedule");
+  if (s.empty())
+    for (int k = 1; k <= n_steps; ++k) s.push_back(static_cast<double>(k) / n_steps);
+  if (static_cast<int>(s.size()) != n_steps)
+    throw Error(fmt::format("{}: {}: schedule has {} entries for {} load steps", file, what, s.size(), n_steps));
+  s.insert(s.begin(), 0.0);  // step 0: unloaded
+  return s;
+}
+
+// Constant-in-space field value * schedule[step].
+nonlinear::StepField scheduled_constant(std::vector<double> value, std::vector<double> schedule) {
+  return [value = std::move(value), schedule = std::move(schedule)](const double*, int step, double* out) {
+    for (size_t k = 0; k < value.size(); ++k) out[k] = value[k] * schedule.at(step);
+  };
+}
+
+struct Boundary {
+  int tag;
+  std::string name;  // "body/boundary"
+};
+
+Boundary boundary_of(const Scene& s, const toml::table& t, const std::string& file, const std::string& what) {
+  std::string body = t["body"].value<std::string>().value_or("");
+  if (body.empty()) {
+    if (s.body_names.size() != 1)
+      throw Error(fmt::format("{}: {}: name the body (the scene has {} bodies)", file, what, s.body_names.size()));
+    body = s.body_names[0];
+  }
+  const std::string boundary = t["boundary"].value<std::string>().value_or("");
+  const std::string key = body + "/" + boundary;
+  auto it = s.mesh.facet_tag_names.find(key);
+  if (it != s.mesh.facet_tag_names.end()) return {it->second, key};
+  std::string known;
+  for (const auto& [n, tag] : s.mesh.facet_tag_names)
+    if (n.rfind(body + "/", 0) == 0) known += (known.empty() ? "" : ", ") + n.substr(body.size() + 1);
+  throw Error(fmt::format("{}: {}: body '{}' has no boundary '{}' (it has: {})", file, what, body, boundary,
+                          known.empty() ? "none" : known));
+}
+
+}  // namespace
+
+const TableSpec& scene_schema() { return schemas().root; }
+
+std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& origin, const std::string& base_dir,
+                                   int level) {
+  toml::table root;
+  try {
+    root = toml::parse(text, origin);
+  } catch (const toml::parse_error& e) {
+    throw Error(fmt::format("{}: malformed TOML at line {}, column {}: {}", origin, e.source().begin.line,
+                            e.source().begin.column, e.description()));
+  }
+  const Schemas& S = schemas();
+  validate(root, S.root, origin);
+
+  auto scene = std::make_unique<Scene>();
+  Scene& s = *scene;
+  const toml::table& meta = sub(root, "scene");
+  s.origin = origin;
+  s.name = get_string(meta, S.scene_meta, "name");
+  if (s.name.empty()) s.name = std::filesystem::path(origin).stem().string();
+  s.description = get_string(meta, S.scene_meta, "description");
+  s.level = level >= 0 ? level : static_cast<int>(get_int(meta, S.scene_meta, "level"));
+  if (s.level < 0 || s.level > 4) throw Error(fmt::format("{}: mesh level {} outside 0..4", origin, s.level));
+
+  std::map<std::string, size_t> material_index;
+  for (const auto* m : tables(root, "material")) {
+    const std::string name = get_string(*m, S.material, "name");
+    if (material_index.count(name)) throw Error(fmt::format("{}: material '{}' declared twice", origin, name));
+    material_index[name] = s.materials.size();
+    s.materials.push_back(make_material(*m, origin));
+  }
+  std::vector<const materials::Material*> body_material;
+  for (const auto* b : tables(root, "body")) {
+    const std::string name = get_string(*b, S.body, "name");
+    const std::string mat = get_string(*b, S.body, "material");
+    if (std::find(s.body_names.begin(), s.body_names.end(), name) != s.body_names.end())
+      throw Error(fmt::format("{}: body '{}' declared twice", origin, name));
+    auto mi = material_index.find(mat);
+    if (mi == material_index.end()) throw Error(fmt::format("{}: body '{}' uses unknown material '{}'", origin, name, mat));
+    mesh::Mesh m = mesh::refine(make_body_mesh(sub(*b, "mesh"), origin, base_dir, name), s.level);
+    mesh::check_validity(m, fmt::format("{}: body '{}' mesh", origin, name));
+    mesh::append(s.mesh, m, name);
+    s.body_of_cell.insert(s.body_of_cell.end(), m.n_cells(), static_cast<int>(s.body_names.size()));
+    s.body_names.push_back(name);
+    body_material.push_back(s.materials[mi->second].get());
+    s.material_of_body.push_back(s.materials[mi->second]->describe());
+  }
+
+  const auto basis = fem::basis_kind_from_string(get_string(meta, S.scene_meta, "basis"));
+  s.space = std::make_unique<fem::DisplacementSpace>(s.mesh, basis);
+  auto& P = s.problem;
+  P.space = s.space.get();
+  for (int b : s.body_of_cell) P.cell_material.push_back(body_material[b]);
+  P.n_steps = static_cast<int>(get_int(sub(root, "load"), S.load, "steps"));
+  if (P.n_steps < 1) throw Error(fmt::format("{}: load.steps must be at least 1", origin));
+  const int dim = s.mesh.dim;
+
+  int k = 0;
+  for (const auto* d : tables(root, "dirichlet")) {
+    const std::string what = fmt::format("dirichlet[{}]", k++);
+    nonlinear::DirichletCondition bc;
+    const Boundary where = boundary_of(s, *d, origin, what);
+    bc.facet_tag = where.tag;
+    bc.name = where.name;
+    const auto comps = get_strings(*d, "components");
+    const auto value = get_floats(*d, "value");
+    if (comps.size() != value.size())
+      throw Error(fmt::format("{}: {}: {} components but {} values", origin, what, comps.size(), value.size()));
+    std::vector<double> full(dim, 0.0);
+    for (size_t c = 0; c < comps.size(); ++c) {
+      const int axis = comps[c][0] - 'x';
+      if (axis >= dim) throw Error(fmt::format("{}: {}: component '{}' in a {}D scene", origin, what, comps[c], dim));
+      bc.components.push_back(axis);
+      full[axis] = value[c];
+    }
+    bc.value = scheduled_constant(full, schedule_of(*d, P.n_steps, origin, what));
+    P.dirichlet.push_back(std::move(bc));
+  }
+  k = 0;
+  for (const auto* t : tables(root, "traction")) {
+    const std::string what = fmt::format("traction[{}]", k++);
+    nonlinear::TractionLoad load;
+    const Boundary where = boundary_of(s, *t, origin, what);
+    load.facet_tag = where.tag;
+    load.name = where.name;
+    const auto value = get_floats(*t, "value");
+    if (static_cast<int>(value.size()) != dim)
+      throw Error(fmt::format("{}: {}: value needs {} entries", origin, what, dim));
+    load.value = scheduled_constant(value, schedule_of(*t, P.n_steps, origin, what));
+    P.tractions.push_back(std::move(load));
+  }
+  if (root.contains("body_force")) {
+    const toml::table& bf = sub(root, "body_force");
+    const auto value = get_floats(bf, "value");
+    if (static_cast<int>(value.size()) != dim)
+      throw Error(fmt::format("{}: body_force.value needs {} entries", origin, dim));
+    P.body_force = scheduled_constant(value, schedule_of(bf, P.n_steps, origin, "body_force"));
+  }
+
+  const toml::table& nw = sub(root, "newton");
+  s.newton.atol = get_float(nw, S.newton, "atol");
+  s.newton.rtol = get_float(nw, S.newton, "rtol");
+  s.newton.max_iterations = static_cast<int>(get_int(nw, S.newton, "max_iterations"));
+  s.newton.max_backtracks = static_cast<int>(get_int(nw, S.newton, "max_backtracks"));
+  if (!(s.newton.atol >= 0 && s.newton.rtol >= 0 && s.newton.max_iterations >= 1))
+    throw Error(fmt::format("{}: newton tolerances must be >= 0 and max_iterations >= 1", origin));
+  const toml::table& out = sub(root, "output");
+  s.output.vtu = get_bool(out, S.output, "vtu");
+  s.output.csv = get_bool(out, S.output, "csv");
+  return scene;
+}
+
+std::unique_ptr<Scene> load_scene_file(const std::string& path, int level) {
+  std::ifstream in(path);
+  if (!in) throw Error(fmt::format("cannot open scene file '{}'", path));
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return build_scene(ss.str(), path, std::filesystem::path(path).parent_path().string(), level);
+}
+
+}  // namespace stiction::scene

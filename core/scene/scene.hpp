@@ -1,0 +1,54 @@
+#pragma once
+// A scene: bodies (mesh source + material), boundary conditions, load steps, Newton
+// settings and outputs, read from a TOML file whose schema is declared in scene.cpp.
+// The builder creates only what the scene names. The linear solver never appears in a
+// scene: scene x solver x mesh level is the harness's sweep.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fem/displacement_space.hpp"
+#include "materials/material.hpp"
+#include "mesh/mesh.hpp"
+#include "nonlinear/newton.hpp"
+#include "nonlinear/problem.hpp"
+#include "scene/schema.hpp"
+
+namespace stiction::scene {
+
+struct OutputSettings {
+  bool vtu = true;  // VTU per load step + PVD collection
+  bool csv = true;  // per-step quantities
+};
+
+struct Scene {
+  std::string name;
+  std::string description;
+  std::string origin;  // file path or "built-in:<name>"
+  int level = 0;
+  mesh::Mesh mesh;     // all bodies, merged, at `level`
+  std::vector<std::string> body_names;
+  std::vector<int> body_of_cell;
+  std::vector<std::unique_ptr<materials::Material>> materials;
+  std::vector<std::string> material_of_body;  // descriptions, for reports
+  std::unique_ptr<fem::DisplacementSpace> space;
+  nonlinear::ElasticityProblem problem;
+  nonlinear::NewtonSettings newton;
+  OutputSettings output;
+
+  Scene() = default;
+  Scene(const Scene&) = delete;
+  Scene& operator=(const Scene&) = delete;
+};
+
+// The declared schema of a scene file (for documentation and validation).
+const TableSpec& scene_schema();
+
+// Parses and builds a scene. `text` is the TOML source, `origin` names it in messages,
+// `base_dir` resolves relative mesh paths; `level` >= 0 overrides the scene's mesh level.
+std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& origin, const std::string& base_dir,
+                                   int level = -1);
+// Reads a scene file from disk.
+std::unique_ptr<Scene> load_scene_file(const std::string& path, int level = -1);
+
+}  // namespace stiction::scene

@@ -1,0 +1,119 @@
+// stiction: large-deformation contact FEM and a side-by-side benchmark of linear solvers.
+//
+//   stiction solve SCENE [--level N] [--solver NAME] [--out DIR] [-petsc_option value ...]
+//   stiction scenes [--schema]
+//   stiction solvers
+//
+// Arguments of the form -name (one dash) are PETSc options, e.g. -lu_mumps_mat_mumps_icntl_14 50.
+// Exit codes: 0 success, 2 bad input, 3 numerical failure, 4 internal error.
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <cctype>
+#include <set>
+
+#include "builtin_scenes.hpp"
+#include "common/error.hpp"
+#include "common/petsc.hpp"
+#include "registry.hpp"
+#include "run_info.hpp"
+#include "scene/scene.hpp"
+#include "solve_command.hpp"
+
+using namespace stiction;
+
+namespace {
+
+bool is_petsc_option(const std::string& a) {
+  return a.size() > 2 && a[0] == '-' && a[1] != '-' && std::isalpha(static_cast<unsigned char>(a[1]));
+}
+bool looks_like_value(const std::string& a) {
+  return !a.empty() && (a[0] != '-' || (a.size() > 1 && (std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.')));
+}
+
+void list_scenes(bool schema) {
+  if (schema) {
+    fmt::print("Scene file keys (TOML):\n{}", scene::document(scene::scene_schema(), "  "));
+    return;
+  }
+  for (const auto& [name, text] : harness::builtin_scenes()) fmt::print("{:<24} {}\n", name, harness::scene_summary(text));
+}
+
+void list_solvers() {
+  for (const auto& b : solvers::backends()) {
+    const std::string why = b.unavailable_reason();
+    fmt::print("{:<14} {:<12} {}\n", b.name, why.empty() ? "available" : "unavailable", b.description);
+    if (!why.empty()) fmt::print("{:<14} {}\n", "", why);
+  }
+}
+
+// PETSc options the user gave that nothing used: a typo or a backend that was not run.
+void reject_unused(const std::set<std::string>& given) {
+  PetscInt n = 0;
+  char** names = nullptr;
+  char** values = nullptr;
+  STICTION_PETSC(PetscOptionsLeftGet(nullptr, &n, &names, &values));
+  std::string unused;
+  for (PetscInt i = 0; i < n; ++i)
+    if (given.count(std::string("-") + names[i])) unused += fmt::format(" -{}", names[i]);
+  PetscOptionsLeftRestore(nullptr, &n, &names, &values);
+  if (!unused.empty())
+    throw Error(fmt::format("PETSc option(s) not used by the chosen backend:{} (check the name and prefix; "
+                            "`stiction solvers` lists the backends)", unused));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<char*> cli_argv{argv[0]}, petsc_argv{argv[0]};
+  std::set<std::string> petsc_given;
+  for (int i = 1; i < argc; ++i) {
+    if (is_petsc_option(argv[i])) {
+      petsc_argv.push_back(argv[i]);
+      petsc_given.insert(argv[i]);
+      if (i + 1 < argc && looks_like_value(argv[i + 1])) petsc_argv.push_back(argv[++i]);
+    } else {
+      cli_argv.push_back(argv[i]);
+    }
+  }
+
+  CLI::App app{"stiction: large-deformation frictional contact by FEM, and a benchmark of the linear solvers of its "
+               "Newton systems"};
+  app.require_subcommand(1);
+  harness::SolveOptions solve;
+  auto* solve_cmd = app.add_subcommand("solve", "solve a scene with one linear-solver backend");
+  solve_cmd->add_option("scene", solve.scene, "scene file (.toml) or built-in scene name")->required();
+  solve_cmd->add_option("--level", solve.level, "mesh level (uniform refinements of level 0)")->check(CLI::Range(0, 4));
+  solve_cmd->add_option("--solver", solve.solver, "linear-solver backend (see `stiction solvers`)");
+  solve_cmd->add_option("--out", solve.out_dir, "output directory (default out/<scene>-L<level>)");
+  solve_cmd->add_flag("--quiet", solve.quiet, "no progress on stderr");
+  bool schema = false;
+  auto* scenes_cmd = app.add_subcommand("scenes", "list the built-in scenes");
+  scenes_cmd->add_flag("--schema", schema, "print every key a scene file accepts");
+  auto* solvers_cmd = app.add_subcommand("solvers", "list the linear-solver backends");
+
+  try {
+    app.parse(static_cast<int>(cli_argv.size()), cli_argv.data());
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : static_cast<int>(ErrorKind::Input);
+  }
+
+  int petsc_argc = static_cast<int>(petsc_argv.size());
+  char** petsc_args = petsc_argv.data();
+  try {
+    PetscSession petsc(&petsc_argc, &petsc_args);
+    if (*scenes_cmd) list_scenes(schema);
+    if (*solvers_cmd) list_solvers();
+    if (*solve_cmd) {
+      harness::run_solve(solve, harness::collect_run_info(argc, argv));
+      reject_unused(petsc_given);
+    }
+  } catch (const Error& e) {
+    fmt::print(stderr, "stiction: error: {}\n", e.what());
+    return static_cast<int>(e.kind());
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "stiction: internal error: {}\n", e.what());
+    return static_cast<int>(ErrorKind::Internal);
+  }
+  return 0;
+}

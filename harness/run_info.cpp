@@ -1,0 +1,71 @@
+#include "run_info.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "common/petsc.hpp"
+
+#ifndef STICTION_SOURCE_DIR
+#define STICTION_SOURCE_DIR "."
+#endif
+
+namespace stiction::harness {
+
+namespace {
+
+std::string run(const std::string& cmd) {
+  std::array<char, 256> buf{};
+  std::string out;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return "";
+  while (fgets(buf.data(), buf.size(), p)) out += buf.data();
+  pclose(p);
+  while (!out.empty() && (out.back() == '\n' || out.back() == ' ')) out.pop_back();
+  return out;
+}
+
+std::string env_or(const char* name, const char* fallback) {
+  const char* v = std::getenv(name);
+  return v ? v : fallback;
+}
+
+}  // namespace
+
+RunInfo collect_run_info(int argc, char** argv) {
+  RunInfo i;
+  for (int k = 0; k < argc; ++k) i.command_line += (k ? " " : "") + std::string(argv[k]);
+  const std::string src = STICTION_SOURCE_DIR;
+  i.git_revision = run("git -C '" + src + "' rev-parse --short=12 HEAD 2>/dev/null");
+  if (i.git_revision.empty()) i.git_revision = "unknown";
+  else if (!run("git -C '" + src + "' status --porcelain --untracked-files=no 2>/dev/null").empty())
+    i.git_revision += " (with uncommitted changes)";
+  i.petsc_version = petsc_version_string();
+  std::error_code ec;
+  auto blas = std::filesystem::canonical("/usr/lib/x86_64-linux-gnu/libblas.so.3", ec);
+  i.blas = ec ? "unknown" : blas.string();
+  i.threads = fmt::format("OMP_NUM_THREADS={} OPENBLAS_NUM_THREADS={}", env_or("OMP_NUM_THREADS", "unset"),
+                          env_or("OPENBLAS_NUM_THREADS", "unset"));
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  i.machine = fmt::format("{} cores, {:.1f} GiB memory", std::thread::hardware_concurrency(),
+                          static_cast<double>(pages) * page / (1024.0 * 1024 * 1024));
+  std::time_t now = std::time(nullptr);
+  char date[64];
+  std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&now));
+  i.date = date;
+  return i;
+}
+
+std::string format_run_info(const RunInfo& i, const std::string& p) {
+  return fmt::format("{0}command: {1}\n{0}git revision: {2}\n{0}PETSc: {3}\n{0}BLAS: {4} ({5})\n{0}machine: {6}\n{0}date: {7}\n",
+                     p, i.command_line, i.git_revision, i.petsc_version, i.blas, i.threads, i.machine, i.date);
+}
+
+}  // namespace stiction::harness

@@ -1,0 +1,23 @@
+#pragma once
+// How a result was made (style.md habit 1): command line, git revision, PETSc and BLAS,
+// threads, machine. Written at the top of every CSV and report.
+#include <string>
+#include <vector>
+
+namespace stiction::harness {
+
+struct RunInfo {
+  std::string command_line;
+  std::string git_revision;
+  std::string petsc_version;
+  std::string blas;          // where libblas.so.3 points
+  std::string threads;       // OMP/OPENBLAS thread settings
+  std::string machine;       // cores and memory
+  std::string date;
+};
+
+RunInfo collect_run_info(int argc, char** argv);
+// "# key: value" lines, for CSV headers (prefix "# ") or markdown (prefix "- ").
+std::string format_run_info(const RunInfo& info, const std::string& line_prefix);
+
+}  // namespace stiction::harness

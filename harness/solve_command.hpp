@@ -1,0 +1,21 @@
+#pragma once
+// `stiction solve`: one scene with one backend; VTU/PVD per load step and a CSV of
+// per-step quantities (Newton iterations, residuals, linear-solver figures, reactions).
+#include <string>
+
+#include "run_info.hpp"
+
+namespace stiction::harness {
+
+struct SolveOptions {
+  std::string scene;             // path or built-in name
+  int level = -1;                // -1: the scene's own
+  std::string solver = "lu-mumps";
+  std::string out_dir;           // default out/<scene>-L<level>
+  bool quiet = false;
+};
+
+// Throws stiction::Error (Numerical) when a load step fails, after writing what finished.
+void run_solve(const SolveOptions& options, const RunInfo& info);
+
+}  // namespace stiction::harness

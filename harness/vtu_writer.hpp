@@ -1,0 +1,29 @@
+#pragma once
+// ParaView output: one VTU per load step (quadratic cells for P2, with nodal values at
+// vertices and edge midpoints) and a PVD collection indexing them by load step.
+#include <string>
+#include <vector>
+
+#include "scene/scene.hpp"
+
+namespace stiction::harness {
+
+// Von Mises stress of a 3x3 Cauchy stress (row-major).
+double von_mises(const double* sigma);
+
+// Writes displacement (point data) and Cauchy stress, von Mises, body id (cell data, at
+// cell centroids) for the coefficient vector u.
+void write_vtu(const std::string& path, const scene::Scene& scene, const std::vector<double>& u);
+
+class PvdCollection {
+public:
+  explicit PvdCollection(std::string path) : path_(std::move(path)) {}
+  // Adds a dataset and rewrites the collection, so it is valid after every step.
+  void add(double time, const std::string& vtu_file_name);
+
+private:
+  std::string path_;
+  std::vector<std::pair<double, std::string>> entries_;
+};
+
+}  // namespace stiction::harness

@@ -1,0 +1,110 @@
+#include "ksp_solver.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <sstream>
+
+namespace stiction::solvers {
+
+const std::map<std::string, std::string>& embedded_options();  // generated
+
+std::string options_prefix(const std::string& name) {
+  std::string p = name;
+  for (char& c : p)
+    if (c == '-') c = '_';
+  return p + "_";
+}
+
+std::string default_options(const std::string& name) {
+  const auto& all = embedded_options();
+  auto it = all.find(name);
+  return it == all.end() ? std::string() : it->second;
+}
+
+namespace {
+
+// Sets each "-key [value]" line of an options file under the prefix, unless the user has
+// already given that option (the command line wins over the file).
+void insert_defaults(const std::string& prefix, const std::string& text) {
+  std::istringstream lines(text);
+  std::string line;
+  while (std::getline(lines, line)) {
+    line = line.substr(0, line.find('#'));
+    std::istringstream words(line);
+    std::string key, value;
+    if (!(words >> key)) continue;
+    words >> value;
+    const std::string full = "-" + prefix + key.substr(1);
+    PetscBool set = PETSC_FALSE;
+    STICTION_PETSC(PetscOptionsHasName(nullptr, nullptr, full.c_str(), &set));
+    if (!set) STICTION_PETSC(PetscOptionsSetValue(nullptr, full.c_str(), value.empty() ? nullptr : value.c_str()));
+  }
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+KspSolver::KspSolver(std::string name, MPI_Comm comm) : name_(std::move(name)) {
+  STICTION_PETSC(KSPCreate(comm, ksp_.out()));
+  const std::string prefix = options_prefix(name_);
+  STICTION_PETSC(KSPSetOptionsPrefix(ksp_, prefix.c_str()));
+  insert_defaults(prefix, default_options(name_));
+}
+
+void KspSolver::setup(const nonlinear::NewtonSystem& system) {
+  const auto t0 = std::chrono::steady_clock::now();
+  STICTION_PETSC(KSPSetOperators(ksp_, system.matrix, system.matrix));
+  configure(system);
+  STICTION_PETSC(KSPSetFromOptions(ksp_));
+  STICTION_PETSC(KSPSetUp(ksp_));
+  setup_seconds_ = seconds_since(t0);
+  setup_extra_.clear();
+  collect_setup_figures(setup_extra_);
+}
+
+nonlinear::LinearSolveStats KspSolver::solve(const nonlinear::NewtonSystem& system, Vec x) {
+  nonlinear::LinearSolveStats s;
+  s.setup_seconds = setup_seconds_;
+  s.extra = setup_extra_;
+  PetscReal bnorm, rnorm;
+  STICTION_PETSC(VecNorm(system.rhs, NORM_2, &bnorm));
+  const auto t0 = std::chrono::steady_clock::now();
+  STICTION_PETSC(KSPSolve(ksp_, system.rhs, x));
+  s.solve_seconds = seconds_since(t0);
+  KSPConvergedReason reason;
+  PetscInt its;
+  STICTION_PETSC(KSPGetConvergedReason(ksp_, &reason));
+  STICTION_PETSC(KSPGetIterationNumber(ksp_, &its));
+  // True residual: left-preconditioned Krylov methods stop on the preconditioned one.
+  PetscVec r;
+  STICTION_PETSC(VecDuplicate(system.rhs, r.out()));
+  STICTION_PETSC(MatMult(system.matrix, x, r));
+  STICTION_PETSC(VecAYPX(r, -1.0, system.rhs));
+  STICTION_PETSC(VecNorm(r, NORM_2, &rnorm));
+  s.iterations = static_cast<int>(its);
+  s.reason = KSPConvergedReasons[reason];
+  s.initial_residual = bnorm;
+  s.final_residual = rnorm;
+  s.converged = reason > 0 && std::isfinite(rnorm);
+  return s;
+}
+
+std::string KspSolver::describe() const {
+  std::string buf(1 << 16, '\0');
+  PetscViewer viewer;
+  STICTION_PETSC(PetscViewerStringOpen(PetscObjectComm(reinterpret_cast<PetscObject>(ksp_.get())), buf.data(),
+                                       buf.size(), &viewer));
+  STICTION_PETSC(KSPView(ksp_, viewer));
+  STICTION_PETSC(PetscViewerDestroy(&viewer));
+  buf.resize(std::strlen(buf.c_str()));
+  return buf;
+}
+
+}  // namespace stiction::solvers

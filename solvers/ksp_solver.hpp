@@ -1,0 +1,40 @@
+#pragma once
+// Common machinery of the PETSc-based backends: a KSP under the backend's own options
+// prefix, defaults from solvers/options/<name>.opts (command-line options win), separately
+// timed set-up and solve, the true residual recomputed after every solve, and the KSP view
+// as the backend's description. A backend subclasses it only to add its own figures.
+#include <string>
+
+#include "common/petsc.hpp"
+#include "nonlinear/linear_solver.hpp"
+
+namespace stiction::solvers {
+
+// "schur-amg" -> "schur_amg_"
+std::string options_prefix(const std::string& backend_name);
+// The embedded default options of a backend (empty if it has none).
+std::string default_options(const std::string& backend_name);
+
+class KspSolver : public nonlinear::LinearSolver {
+public:
+  KspSolver(std::string name, MPI_Comm comm);
+  std::string name() const override { return name_; }
+  void setup(const nonlinear::NewtonSystem& system) override;
+  nonlinear::LinearSolveStats solve(const nonlinear::NewtonSystem& system, Vec x) override;
+  std::string describe() const override;
+
+protected:
+  // Backend figures after set-up (factorisation memory, AMG complexity, ...).
+  virtual void collect_setup_figures(std::map<std::string, double>& extra) const {}
+  // Hook to configure the KSP/PC from the system (field splits, ...) before KSPSetUp.
+  virtual void configure(const nonlinear::NewtonSystem& system) {}
+  KSP ksp() const { return ksp_; }
+
+private:
+  std::string name_;
+  PetscKSP ksp_;
+  double setup_seconds_ = 0;
+  std::map<std::string, double> setup_extra_;
+};
+
+}  // namespace stiction::solvers

@@ -1,0 +1,48 @@
+#include "registry.hpp"
+
+#include <fmt/format.h>
+
+#include "common/error.hpp"
+#include "common/petsc.hpp"
+
+namespace stiction::solvers {
+
+std::unique_ptr<nonlinear::LinearSolver> make_lu_mumps(MPI_Comm comm);
+
+namespace {
+
+// Empty when PETSc was built with the external package, else the reason.
+std::function<std::string()> needs_package(const char* package) {
+  return [package]() -> std::string {
+    PetscBool has = PETSC_FALSE;
+    PetscHasExternalPackage(package, &has);
+    return has ? "" : fmt::format("PETSc was built without {}", package);
+  };
+}
+
+}  // namespace
+
+const std::vector<BackendInfo>& backends() {
+  static const std::vector<BackendInfo> all{
+      {"lu-mumps", "global LU factorisation by MUMPS (the paper's GlobalLU)", needs_package("mumps"), make_lu_mumps},
+  };
+  return all;
+}
+
+std::string backend_names() {
+  std::string s;
+  for (const auto& b : backends()) s += (s.empty() ? "" : ", ") + b.name;
+  return s;
+}
+
+std::unique_ptr<nonlinear::LinearSolver> create_solver(const std::string& name, MPI_Comm comm) {
+  for (const auto& b : backends()) {
+    if (b.name != name) continue;
+    const std::string why = b.unavailable_reason();
+    if (!why.empty()) throw Error(fmt::format("solver backend '{}' is not available: {}", name, why));
+    return b.create(comm);
+  }
+  throw Error(fmt::format("unknown solver backend '{}' (valid: {})", name, backend_names()));
+}
+
+}  // namespace stiction::solvers
