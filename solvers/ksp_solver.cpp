@@ -6,7 +6,11 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <cstdio>
+#include <fstream>
 #include <sstream>
+
+#include <unistd.h>
 
 namespace stiction::solvers {
 
@@ -97,14 +101,20 @@ nonlinear::LinearSolveStats KspSolver::solve(const nonlinear::NewtonSystem& syst
 }
 
 std::string KspSolver::describe() const {
-  std::string buf(1 << 16, '\0');
+  // The string viewer prints one line only: go through an ASCII file for the full view.
+  char path[] = "/tmp/stiction-kspview-XXXXXX";
+  const int fd = mkstemp(path);
+  if (fd < 0) return "(KSP view unavailable)";
+  close(fd);
   PetscViewer viewer;
-  STICTION_PETSC(PetscViewerStringOpen(PetscObjectComm(reinterpret_cast<PetscObject>(ksp_.get())), buf.data(),
-                                       buf.size(), &viewer));
+  STICTION_PETSC(PetscViewerASCIIOpen(PETSC_COMM_SELF, path, &viewer));
   STICTION_PETSC(KSPView(ksp_, viewer));
   STICTION_PETSC(PetscViewerDestroy(&viewer));
-  buf.resize(std::strlen(buf.c_str()));
-  return buf;
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::remove(path);
+  return text.str();
 }
 
 }  // namespace stiction::solvers

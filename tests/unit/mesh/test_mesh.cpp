@@ -1,0 +1,149 @@
+// Refinement counts and invariants, the validity check, and Gmsh .msh round trips.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+
+#include "common/error.hpp"
+#include "fem/displacement_space.hpp"
+#include "mesh/gmsh_io.hpp"
+#include "mesh/mesh.hpp"
+
+namespace stiction::mesh {
+namespace {
+
+double total_measure(const Mesh& m) {
+  double s = 0;
+  for (int c = 0; c < m.n_cells(); ++c) s += signed_measure(m, c);
+  return s;
+}
+
+std::map<int, int> facets_per_tag(const Mesh& m) {
+  std::map<int, int> n;
+  for (int t : m.facet_tags) ++n[t];
+  return n;
+}
+
+class Refinement : public ::testing::TestWithParam<int> {};
+
+TEST_P(Refinement, CountsTagsMeasureAndOrientation) {
+  const int dim = GetParam();
+  const Mesh coarse = structured_box(dim, {2.0, 1.0, 0.5}, {3, 2, 2});
+  const Mesh fine = refine(coarse);
+  const int children = dim == 2 ? 4 : 8, facet_children = dim == 2 ? 2 : 4;
+  EXPECT_EQ(fine.n_cells(), children * coarse.n_cells());
+  EXPECT_EQ(fine.n_facets(), facet_children * coarse.n_facets());
+  // Vertices of level k+1 are the P2 nodes of level k.
+  EXPECT_EQ(fine.n_vertices(), coarse.n_vertices() + build_edges(coarse).n_edges());
+  const fem::DisplacementSpace p2(coarse, fem::BasisKind::P2Hierarchical);
+  ASSERT_EQ(p2.n_nodes(), fine.n_vertices());
+  for (int n = 0; n < p2.n_nodes(); ++n) {
+    double X[3];
+    p2.node_position(n, X);
+    for (int k = 0; k < dim; ++k) EXPECT_EQ(X[k], fine.vertex(n)[k]);
+  }
+  EXPECT_NEAR(total_measure(fine), total_measure(coarse), 1e-12);
+  for (int c = 0; c < fine.n_cells(); ++c) ASSERT_GT(signed_measure(fine, c), 0) << "cell " << c;
+  for (auto [tag, count] : facets_per_tag(coarse)) EXPECT_EQ(facets_per_tag(fine)[tag], facet_children * count);
+  for (int c = 0; c < fine.n_cells(); ++c) EXPECT_EQ(fine.cell_tags[c], coarse.cell_tags[c / children]);
+  EXPECT_NO_THROW(check_validity(refine(fine), "level 2"));
+}
+
+INSTANTIATE_TEST_SUITE_P(Dimensions, Refinement, ::testing::Values(2, 3));
+
+TEST(Refinement, StructuredCubeCounts) {
+  // Unit cube in 6 tetrahedra: 8 vertices, 19 edges. Level 1: 48 cells, 27 vertices.
+  const Mesh m0 = structured_box(3, {1, 1, 1}, {1, 1, 1});
+  EXPECT_EQ(m0.n_cells(), 6);
+  EXPECT_EQ(build_edges(m0).n_edges(), 19);
+  const Mesh m1 = refine(m0);
+  EXPECT_EQ(m1.n_cells(), 48);
+  EXPECT_EQ(m1.n_vertices(), 27);
+  const Mesh m2 = refine(m0, 2);
+  EXPECT_EQ(m2.n_cells(), 384);
+  EXPECT_EQ(m2.n_vertices(), 125);
+}
+
+TEST(Validity, InvertedElementNamesIndexAndCoordinates) {
+  Mesh m = structured_box(3, {1, 1, 1}, {1, 1, 1});
+  std::swap(m.cells[3 * 4 + 0], m.cells[3 * 4 + 1]);
+  try {
+    check_validity(m, "test mesh");
+    FAIL() << "no error for an inverted element";
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("inverted element 3"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("(0, 0, 0)"), std::string::npos) << msg;
+  }
+}
+
+TEST(Validity, DegenerateElement) {
+  Mesh m = structured_box(2, {1, 1, 1}, {2, 2, 1});
+  const int v = m.cells[1];
+  for (int k = 0; k < 2; ++k) m.coords[v * 2 + k] = m.coords[m.cells[0] * 2 + k];  // collapse an edge
+  EXPECT_THROW(
+      {
+        try {
+          check_validity(m, "test mesh");
+        } catch (const Error& e) {
+          EXPECT_NE(std::string(e.what()).find("degenerate element"), std::string::npos) << e.what();
+          throw;
+        }
+      },
+      Error);
+}
+
+class GmshRoundTrip : public ::testing::TestWithParam<std::tuple<int, bool>> {};
+
+TEST_P(GmshRoundTrip, ReadsWhatGmshWrote) {
+  const auto [dim, binary] = GetParam();
+  const std::array<double, 3> L{2.0, 1.0, 0.5};
+  const std::string path = ::testing::TempDir() + "/box-" + std::to_string(dim) + (binary ? "b" : "a") + ".msh";
+  write_box_msh(dim, L, 0.25, path, binary);
+  const Mesh generated = generate_box(dim, L, 0.25);
+  const Mesh read = read_msh(path);
+  std::remove(path.c_str());
+  EXPECT_EQ(read.dim, dim);
+  EXPECT_EQ(read.n_cells(), generated.n_cells());
+  EXPECT_EQ(read.n_vertices(), generated.n_vertices());
+  EXPECT_GT(read.n_cells(), 50);
+  EXPECT_NEAR(total_measure(read), dim == 3 ? 1.0 : 2.0, 1e-10);
+  EXPECT_NO_THROW(check_validity(read, path));
+  EXPECT_EQ(read.cell_tag_names.at("body"), 1);
+  // Each named side carries facets covering exactly its area (length in 2D).
+  const char* names[6] = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
+  for (int t = 0; t < 2 * dim; ++t) {
+    ASSERT_EQ(read.facet_tag_names.at(names[t]), t + 1);
+    double area = 0;
+    for (int f = 0; f < read.n_facets(); ++f) {
+      if (read.facet_tags[f] != t + 1) continue;
+      const double* a = read.vertex(read.facet(f)[0]);
+      const double* b = read.vertex(read.facet(f)[1]);
+      if (dim == 2) {
+        area += std::hypot(b[0] - a[0], b[1] - a[1]);
+      } else {
+        const double* c = read.vertex(read.facet(f)[2]);
+        const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        area += 0.5 * std::sqrt(std::pow(u[1] * v[2] - u[2] * v[1], 2) + std::pow(u[2] * v[0] - u[0] * v[2], 2) +
+                                std::pow(u[0] * v[1] - u[1] * v[0], 2));
+      }
+    }
+    const int axis = t / 2;
+    double expected = 1;
+    for (int k = 0; k < dim; ++k)
+      if (k != axis) expected *= L[k];
+    EXPECT_NEAR(area, expected, 1e-10) << names[t];
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Formats, GmshRoundTrip,
+                         ::testing::Combine(::testing::Values(2, 3), ::testing::Values(false, true)));
+
+TEST(GmshRead, MissingFileIsAnError) {
+  EXPECT_THROW(read_msh("/nonexistent/mesh.msh"), Error);
+}
+
+}  // namespace
+}  // namespace stiction::mesh

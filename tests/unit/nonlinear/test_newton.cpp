@@ -1,0 +1,238 @@
+// The assembled tangent against finite differences of the assembled residual; exact
+// homogeneous finite-strain solutions (a patch test for Neo-Hookean with reactions);
+// Newton's quadratic convergence and its named failure reasons.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "fem/elasticity_assembly.hpp"
+#include "materials/material.hpp"
+#include "mesh/gmsh_io.hpp"
+#include "nonlinear/newton.hpp"
+#include "registry.hpp"
+
+namespace stiction::nonlinear {
+namespace {
+
+using fem::BasisKind;
+
+class TangentVsFiniteDifferences : public ::testing::TestWithParam<std::tuple<int, BasisKind>> {};
+
+TEST_P(TangentVsFiniteDifferences, RelativeError1e6) {
+  const auto [dim, kind] = GetParam();
+  const mesh::Mesh m = mesh::refine(mesh::structured_box(dim, {1, 1, 1}, {2, 2, 2}), dim == 2 ? 1 : 0);
+  const fem::DisplacementSpace space(m, kind);
+  materials::NeoHookean law(10.0, 0.35);
+  const std::vector<const materials::Material*> mats(m.n_cells(), &law);
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<double> dist(-1, 1);
+  std::vector<double> u(space.n_dofs()), v(space.n_dofs());
+  for (auto& x : u) x = 0.03 * dist(rng);
+  for (auto& x : v) x = dist(rng);
+
+  Mat K = fem::create_matrix(PETSC_COMM_WORLD, space);
+  std::vector<double> r0(space.n_dofs(), 0.0);
+  const auto status = fem::assemble_internal(space, mats, u, &r0, K);
+  ASSERT_LT(status.inverted_cell, 0);
+  MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY);
+  MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY);
+  Vec vv, Kv;
+  MatCreateVecs(K, &vv, &Kv);
+  PetscScalar* a;
+  VecGetArray(vv, &a);
+  std::copy(v.begin(), v.end(), a);
+  VecRestoreArray(vv, &a);
+  MatMult(K, vv, Kv);
+
+  const double h = 1e-6;
+  std::vector<double> up = u, um = u, rp(space.n_dofs(), 0.0), rm(space.n_dofs(), 0.0);
+  for (size_t i = 0; i < u.size(); ++i) up[i] += h * v[i], um[i] -= h * v[i];
+  fem::assemble_internal(space, mats, up, &rp, nullptr);
+  fem::assemble_internal(space, mats, um, &rm, nullptr);
+  const PetscScalar* kv;
+  VecGetArrayRead(Kv, &kv);
+  double diff = 0, norm = 0;
+  for (size_t i = 0; i < u.size(); ++i) {
+    const double fd = (rp[i] - rm[i]) / (2 * h);
+    diff += (kv[i] - fd) * (kv[i] - fd);
+    norm += kv[i] * kv[i];
+  }
+  VecRestoreArrayRead(Kv, &kv);
+  EXPECT_LT(std::sqrt(diff / norm), 1e-6);
+  EXPECT_GT(norm, 0);
+  VecDestroy(&vv);
+  VecDestroy(&Kv);
+  MatDestroy(&K);
+}
+
+INSTANTIATE_TEST_SUITE_P(All, TangentVsFiniteDifferences,
+                         ::testing::Combine(::testing::Values(2, 3),
+                                            ::testing::Values(BasisKind::P1, BasisKind::P2Nodal,
+                                                              BasisKind::P2Hierarchical)));
+
+// Uniaxial stretch with rollers: the exact solution is homogeneous, F = diag(1+d, s, s)
+// (3D) or diag(1+d, s) with F33 = 1 (plane strain), where the lateral stretch s makes the
+// lateral stress vanish. It lies in the discrete space, so Newton must find it to
+// round-off on an unstructured mesh, and the reaction is P11 times the face area.
+struct Stretch {
+  double mu, lambda, stretch, lateral, p11;
+};
+
+Stretch exact_stretch(int dim, double E, double nu, double d) {
+  Stretch s{};
+  materials::lame_parameters(E, nu, s.lambda, s.mu);
+  s.stretch = 1 + d;
+  // P22 = mu s + c / s = 0 with c = Lambda/2 (J^2 - 1) - mu: solve for s by Newton.
+  double x = 1;
+  for (int it = 0; it < 50; ++it) {
+    const double J = s.stretch * std::pow(x, dim - 1);
+    const double g = s.mu * x * x + 0.5 * s.lambda * (J * J - 1) - s.mu;
+    const double dJ = s.stretch * (dim - 1) * std::pow(x, dim - 2);
+    const double dg = 2 * s.mu * x + s.lambda * J * dJ;
+    x -= g / dg;
+  }
+  s.lateral = x;
+  const double J = s.stretch * std::pow(x, dim - 1);
+  s.p11 = s.mu * s.stretch + (0.5 * s.lambda * (J * J - 1) - s.mu) / s.stretch;
+  return s;
+}
+
+class HomogeneousStretch : public ::testing::TestWithParam<std::tuple<int, BasisKind>> {};
+
+TEST_P(HomogeneousStretch, ExactToRoundOff) {
+  const auto [dim, kind] = GetParam();
+  const std::array<double, 3> L{1.0, 0.8, 0.6};
+  const mesh::Mesh m = mesh::generate_box(dim, L, 0.3);  // unstructured
+  const fem::DisplacementSpace space(m, kind);
+  materials::NeoHookean law(100.0, 0.3);
+  const double d = 0.25;
+  ElasticityProblem p;
+  p.space = &space;
+  p.cell_material.assign(m.n_cells(), &law);
+  p.n_steps = 2;
+  for (int axis = 0; axis < dim; ++axis) {  // rollers on the min faces
+    const int tag = 2 * axis + 1;
+    p.dirichlet.push_back({"min" + std::to_string(axis), tag, {axis}, [](const double*, int, double* u) {
+                             u[0] = u[1] = u[2] = 0;
+                           }});
+  }
+  p.dirichlet.push_back({"xmax", 2, {0}, [d, L](const double*, int step, double* u) {
+                           u[0] = d * L[0] * step / 2.0;
+                           u[1] = u[2] = 0;
+                         }});
+  NewtonSettings settings;
+  settings.atol = 1e-11;
+  auto solver = solvers::create_solver("lu-mumps", PETSC_COMM_WORLD);
+  QuasiStaticSolver newton(PETSC_COMM_WORLD, p, settings, *solver);
+  const auto results = newton.run();
+  ASSERT_EQ(results.size(), 2u);
+  ASSERT_TRUE(results.back().converged()) << to_string(results.back().reason);
+
+  const Stretch s = exact_stretch(dim, 100.0, 0.3, d);
+  const auto nodal = space.nodal_values(newton.displacement());
+  double X[3], err = 0;
+  for (int n = 0; n < space.n_nodes(); ++n) {
+    space.node_position(n, X);
+    for (int k = 0; k < dim; ++k) {
+      const double exact = ((k == 0 ? s.stretch : s.lateral) - 1) * X[k];
+      err = std::max(err, std::abs(nodal[static_cast<size_t>(n) * dim + k] - exact));
+    }
+  }
+  EXPECT_LT(err, 1e-10);
+  double area = 1;
+  for (int k = 1; k < dim; ++k) area *= L[k];
+  const auto& reactions = results.back().reactions;
+  EXPECT_NEAR(reactions.at("xmax")[0], s.p11 * area, 1e-8 * s.p11 * area);
+  EXPECT_NEAR(reactions.at("min0")[0], -s.p11 * area, 1e-8 * s.p11 * area);
+  // Newton converges quadratically: few iterations per step.
+  for (const auto& r : results) EXPECT_LE(r.iterations.size(), 6u);
+}
+
+INSTANTIATE_TEST_SUITE_P(All, HomogeneousStretch,
+                         ::testing::Combine(::testing::Values(2, 3),
+                                            ::testing::Values(BasisKind::P1, BasisKind::P2Hierarchical)));
+
+// Shared set-up: a plane-strain cantilever loaded by an end shear traction (large rotation).
+struct Cantilever {
+  mesh::Mesh m = mesh::refine(mesh::structured_box(2, {10, 1, 1}, {20, 2, 1}), 1);
+  fem::DisplacementSpace space{m, BasisKind::P2Hierarchical};
+  materials::NeoHookean law{1000.0, 0.3};
+  ElasticityProblem p;
+  Cantilever() {
+    p.space = &space;
+    p.cell_material.assign(m.n_cells(), &law);
+    p.n_steps = 2;
+    p.dirichlet.push_back({"clamp", 1, {0, 1}, [](const double*, int, double* u) { u[0] = u[1] = 0; }});
+    p.tractions.push_back({"end", 2, [](const double*, int step, double* t) {
+                             t[0] = 0;
+                             t[1] = -0.5 * step;
+                           }});
+  }
+};
+
+TEST(Newton, ConvergesQuadraticallyAndBalancesTheLoad) {
+  Cantilever c;
+  auto solver = solvers::create_solver("lu-mumps", PETSC_COMM_WORLD);
+  QuasiStaticSolver newton(PETSC_COMM_WORLD, c.p, NewtonSettings{}, *solver);
+  const auto results = newton.run();
+  ASSERT_TRUE(results.back().converged());
+  for (const auto& r : results) {
+    // Quadratic: once the residual is small, each iteration roughly squares it.
+    for (size_t k = 1; k < r.iterations.size(); ++k) {
+      const double prev = r.iterations[k - 1].residual / r.reference_residual;
+      const double next = r.iterations[k].residual / r.reference_residual;
+      if (prev < 1e-2 && next > 1e-13) EXPECT_LT(next, 50 * prev * prev) << "step " << r.step << " iteration " << k;
+    }
+  }
+  // The clamp carries the whole end load: 0.5 * step per unit height, unit height.
+  EXPECT_NEAR(results.back().reactions.at("clamp")[1], 1.0, 1e-8);
+  EXPECT_NEAR(results.back().reactions.at("clamp")[0], 0.0, 1e-8);
+  // Large deflection: the tip moves down by a sizeable fraction of the length.
+  double tip = 0;
+  const auto nodal = c.space.nodal_values(newton.displacement());
+  for (int n = 0; n < c.space.n_nodes(); ++n) tip = std::min(tip, nodal[static_cast<size_t>(n) * 2 + 1]);
+  EXPECT_LT(tip, -1.0);
+}
+
+TEST(Newton, NamesTheReasonWhenItStops) {
+  Cantilever c;
+  NewtonSettings settings;
+  settings.max_iterations = 1;
+  auto solver = solvers::create_solver("lu-mumps", PETSC_COMM_WORLD);
+  QuasiStaticSolver newton(PETSC_COMM_WORLD, c.p, settings, *solver);
+  const auto results = newton.run();
+  ASSERT_EQ(results.size(), 1u);  // stops at the first failed step
+  EXPECT_EQ(results[0].reason, NewtonReason::DivergedMaxIterations);
+  EXPECT_FALSE(results[0].detail.empty());
+  EXPECT_TRUE(std::isfinite(results[0].final_residual));
+}
+
+TEST(Newton, SystemCarriesFieldsAndNearNullSpace) {
+  Cantilever c;
+  auto solver = solvers::create_solver("lu-mumps", PETSC_COMM_WORLD);
+  QuasiStaticSolver newton(PETSC_COMM_WORLD, c.p, NewtonSettings{}, *solver);
+  const NewtonSystem& sys = newton.system();
+  ASSERT_NE(sys.field("u_l"), nullptr);
+  ASSERT_NE(sys.field("u_q"), nullptr);
+  PetscInt nl, nq, bs;
+  ISGetSize(sys.field("u_l")->is, &nl);
+  ISGetSize(sys.field("u_q")->is, &nq);
+  EXPECT_EQ(nl, c.m.n_vertices() * 2);
+  EXPECT_EQ(nl + nq, c.space.n_dofs());
+  MatGetBlockSize(sys.matrix, &bs);
+  EXPECT_EQ(bs, 2);
+  // Rigid-body modes annihilate the unconstrained stiffness at the reference state.
+  Mat K = fem::create_matrix(PETSC_COMM_WORLD, c.space);
+  std::vector<double> u(c.space.n_dofs(), 0.0);
+  fem::assemble_internal(c.space, c.p.cell_material, u, nullptr, K);
+  MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY);
+  MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY);
+  PetscBool is_null;
+  MatNullSpaceTest(sys.near_null_space, K, &is_null);
+  EXPECT_TRUE(is_null);
+  MatDestroy(&K);
+}
+
+}  // namespace
+}  // namespace stiction::nonlinear

@@ -1,0 +1,91 @@
+// Scene schema: defaults, validation messages, and that only named objects are built.
+#include <gtest/gtest.h>
+
+#include "common/error.hpp"
+#include "scene/scene.hpp"
+
+namespace stiction::scene {
+namespace {
+
+const char* kMinimal = R"(
+[[material]]
+name = "steel"
+model = "linear"
+E = 200.0
+nu = 0.3
+
+[[body]]
+name = "bar"
+material = "steel"
+mesh = { generator = "structured-box", size = [4.0, 1.0], cells = [4, 1] }
+
+[[dirichlet]]
+boundary = "xmin"
+components = ["x", "y"]
+value = [0.0, 0.0]
+)";
+
+std::string error_of(const std::string& text) {
+  try {
+    build_scene(text, "test.toml", ".");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Scene, DefaultsComeFromTheSchema) {
+  auto s = build_scene(kMinimal, "test.toml", ".");
+  EXPECT_EQ(s->name, "test");
+  EXPECT_EQ(s->level, 0);
+  EXPECT_EQ(s->problem.n_steps, 1);
+  EXPECT_EQ(s->newton.max_iterations, 25);
+  EXPECT_DOUBLE_EQ(s->newton.rtol, 1e-8);
+  EXPECT_EQ(s->space->kind(), fem::BasisKind::P2Hierarchical);
+  EXPECT_EQ(s->problem.dirichlet.size(), 1u);
+  EXPECT_TRUE(s->problem.tractions.empty());  // nothing the scene does not name
+  EXPECT_FALSE(s->problem.body_force);
+  EXPECT_EQ(s->mesh.n_cells(), 8);
+}
+
+TEST(Scene, LevelRefines) {
+  auto s = build_scene(kMinimal, "test.toml", ".", 2);
+  EXPECT_EQ(s->mesh.n_cells(), 8 * 16);
+}
+
+TEST(Scene, UnknownKeyNamesFileKeyAndAccepted) {
+  const std::string msg = error_of(std::string(kMinimal) + "\n[newton]\nrtool = 1e-6\n");
+  EXPECT_NE(msg.find("test.toml"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("'newton.rtool'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("rtol"), std::string::npos) << msg;  // the accepted keys
+}
+
+TEST(Scene, WrongTypeAndBadChoice) {
+  EXPECT_NE(error_of(std::string(kMinimal) + "\n[load]\nsteps = \"four\"\n").find("must be a integer"), std::string::npos);
+  std::string bad = kMinimal;
+  bad.replace(bad.find("\"linear\""), 8, "\"rubbery\"");
+  const std::string msg = error_of(bad);
+  EXPECT_NE(msg.find("'rubbery'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("neo-hookean"), std::string::npos) << msg;
+}
+
+TEST(Scene, MissingRequiredKey) {
+  std::string bad = kMinimal;
+  bad.erase(bad.find("nu = 0.3"), 8);
+  EXPECT_NE(error_of(bad).find("missing required key 'material[0].nu'"), std::string::npos) << error_of(bad);
+}
+
+TEST(Scene, ScheduleLengthMustMatchSteps) {
+  const std::string msg = error_of(std::string(kMinimal) + "\n[load]\nsteps = 3\n[[traction]]\nboundary = \"xmax\"\n"
+                                                           "value = [1.0, 0.0]\nschedule = [0.5, 1.0]\n");
+  EXPECT_NE(msg.find("schedule has 2 entries for 3 load steps"), std::string::npos) << msg;
+}
+
+TEST(Scene, SchemaDocumentsEveryKey) {
+  const std::string doc = document(scene_schema());
+  for (const char* key : {"material", "body", "dirichlet", "traction", "schedule", "max_iterations", "basis"})
+    EXPECT_NE(doc.find(key), std::string::npos) << key;
+}
+
+}  // namespace
+}  // namespace stiction::scene
