@@ -1,0 +1,123 @@
+// Assembly micro-benchmarks on the built-in block-compression scene (P2 hierarchical,
+// Neo-Hookean) at mesh levels 0 and 1, at the state after one load step's worth of
+// compression so the tangent is a genuine finite-strain one.
+//
+//   build/benchmarks/bench_assembly [--benchmark_filter=...] [--benchmark_format=json]
+//
+// Counters: unknowns, MDof/s (unknowns per second of one residual + tangent assembly),
+// matrix_MB (AIJ storage: values + column indices + row offsets), peak_RSS_MB (VmHWM of
+// the process after assembling: mesh, space, matrix and work vectors).
+#include <benchmark/benchmark.h>
+
+#include <fstream>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "builtin_scenes.hpp"
+#include "common/petsc.hpp"
+#include "fem/elasticity_assembly.hpp"
+
+namespace {
+
+using namespace stiction;
+
+double peak_rss_mb() {
+  std::ifstream status("/proc/self/status");
+  std::string key;
+  while (status >> key) {
+    if (key == "VmHWM:") {
+      double kb;
+      status >> kb;
+      return kb / 1024.0;
+    }
+    std::getline(status, key);
+  }
+  return 0;
+}
+
+// One scene per level, built once (Gmsh + refinement are not what is measured).
+scene::Scene& block(int level) {
+  static std::map<int, std::unique_ptr<scene::Scene>> scenes;
+  auto& s = scenes[level];
+  if (!s) s = harness::open_scene("block-compression", level);
+  return *s;
+}
+
+std::vector<double> compressed_state(const fem::DisplacementSpace& space) {
+  std::vector<double> u;  // 2% homogeneous compression along z: F = diag(1, 1, 0.98)
+  space.interpolate([&](const double* X, double* out) { out[0] = 0, out[1] = 0, out[2] = -0.02 * X[2]; }, u);
+  return u;
+}
+
+double matrix_mb(Mat A) {
+  MatInfo info;
+  MatGetInfo(A, MAT_LOCAL, &info);
+  PetscInt rows;
+  MatGetSize(A, &rows, nullptr);
+  return (info.nz_allocated * (sizeof(PetscScalar) + sizeof(PetscInt)) + (rows + 1) * sizeof(PetscInt)) / 1048576.0;
+}
+
+void BM_ResidualAndTangent(benchmark::State& state) {
+  scene::Scene& s = block(static_cast<int>(state.range(0)));
+  const auto& space = *s.space;
+  const auto u = compressed_state(space);
+  PetscMat A(fem::create_matrix(PETSC_COMM_WORLD, space));
+  std::vector<double> r(space.n_dofs());
+  for (auto _ : state) {
+    MatZeroEntries(A);
+    std::fill(r.begin(), r.end(), 0.0);
+    fem::assemble_internal(space, s.problem.cell_material, u, &r, A);
+    MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
+    MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
+    benchmark::DoNotOptimize(r.data());
+  }
+  state.counters["unknowns"] = space.n_dofs();
+  state.counters["cells"] = s.mesh.n_cells();
+  state.counters["MDof/s"] = benchmark::Counter(space.n_dofs() * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["matrix_MB"] = matrix_mb(A);
+  state.counters["peak_RSS_MB"] = peak_rss_mb();
+}
+BENCHMARK(BM_ResidualAndTangent)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_ResidualOnly(benchmark::State& state) {
+  scene::Scene& s = block(static_cast<int>(state.range(0)));
+  const auto& space = *s.space;
+  const auto u = compressed_state(space);
+  std::vector<double> r(space.n_dofs());
+  for (auto _ : state) {
+    std::fill(r.begin(), r.end(), 0.0);
+    fem::assemble_internal(space, s.problem.cell_material, u, &r, nullptr);
+    benchmark::DoNotOptimize(r.data());
+  }
+  state.counters["unknowns"] = space.n_dofs();
+  state.counters["MDof/s"] = benchmark::Counter(space.n_dofs() * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_ResidualOnly)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_MatMult(benchmark::State& state) {
+  scene::Scene& s = block(static_cast<int>(state.range(0)));
+  const auto& space = *s.space;
+  PetscMat A(fem::create_matrix(PETSC_COMM_WORLD, space));
+  fem::assemble_internal(space, s.problem.cell_material, compressed_state(space), nullptr, A);
+  MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
+  MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
+  PetscVec x, y;
+  MatCreateVecs(A, x.out(), y.out());
+  VecSet(x, 1.0);
+  for (auto _ : state) MatMult(A, x, y);
+  state.counters["unknowns"] = space.n_dofs();
+  state.counters["MDof/s"] = benchmark::Counter(space.n_dofs() * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_MatMult)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  int pargc = 1;
+  PetscSession petsc(&pargc, &argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,272 @@
+// Bad input to the `stiction` CLI must end with exactly one `stiction: error: <message>`
+// line on stderr and the documented exit code (2 bad input, 3 numerical failure), never a
+// crash; a valid run must exit 0 and write its output files.
+//
+// The binary is run as a child process (std::system) from a fresh temporary directory; the
+// scene variants are written there at test time from a copy of the cantilever-2d scene.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#ifndef STICTION_BINARY
+#error "STICTION_BINARY (path of the stiction executable) must be defined by the build"
+#endif
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+#ifdef STICTION_TEST_DATA_DIR
+const fs::path data_dir = STICTION_TEST_DATA_DIR;
+#else
+const fs::path data_dir = fs::path(__FILE__).parent_path().parent_path() / "data";
+#endif
+
+// harness/scenes/cantilever-2d.toml without its comments: solves in well under a second.
+constexpr const char* cantilever_2d = R"([scene]
+name = "cantilever-2d"
+description = "plane-strain Neo-Hookean cantilever under an end shear traction"
+
+[[material]]
+name = "soft"
+model = "neo-hookean"
+E = 1000.0
+nu = 0.3
+
+[[body]]
+name = "beam"
+material = "soft"
+mesh = { generator = "box", size = [10.0, 1.0], h = 0.25 }
+
+[[dirichlet]]
+boundary = "xmin"
+components = ["x", "y"]
+value = [0.0, 0.0]
+
+[[traction]]
+boundary = "xmax"
+value = [0.0, -1.0]
+
+[load]
+steps = 4
+)";
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+// `env -u NAME ...` for the MPI variables of this (PETSc-initialised) test process, so the
+// child starts as its own MPI singleton instead of joining this process's PMIx job.
+std::string without_mpi_environment() {
+  std::string prefix = "env";
+  for (char** e = environ; *e != nullptr; ++e) {
+    const std::string var = *e;
+    const std::string name = var.substr(0, var.find('='));
+    if (name.rfind("OMPI_", 0) == 0 || name.rfind("PMIX_", 0) == 0 || name.rfind("OPAL_", 0) == 0)
+      prefix += " -u " + name;
+  }
+  return prefix;
+}
+
+// One run of the binary: exit code (128 + signal if it was killed) and captured stderr.
+struct CliRun {
+  int exit_code = -1;
+  std::string err;
+
+  static constexpr int timeout_seconds = 300;  // `timeout` exits 124 if the run hangs
+
+  static CliRun of(const std::vector<std::string>& args, const fs::path& workdir) {
+    const fs::path err_file = workdir / "stderr.txt";
+    std::string command = "cd " + shell_quote(workdir.string()) + " && exec " +
+                          without_mpi_environment() + " timeout " +
+                          std::to_string(timeout_seconds) + " " + shell_quote(STICTION_BINARY);
+    for (const auto& a : args) command += " " + shell_quote(a);
+    command += " >" + shell_quote((workdir / "stdout.txt").string()) + " 2>" +
+               shell_quote(err_file.string());
+    const int status = std::system(command.c_str());
+    CliRun run;
+    if (status != -1 && WIFEXITED(status)) run.exit_code = WEXITSTATUS(status);
+    else if (status != -1 && WIFSIGNALED(status)) run.exit_code = 128 + WTERMSIG(status);
+    run.err = read_file(err_file);
+    return run;
+  }
+
+  std::vector<std::string> error_lines() const {
+    std::vector<std::string> lines;
+    std::istringstream in(err);
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind("stiction: error:", 0) == 0) lines.push_back(line);
+    return lines;
+  }
+};
+
+// A variant of the cantilever-2d scene, edited by exact text replacement.
+struct SceneVariant {
+  std::string text = cantilever_2d;
+
+  SceneVariant& replace(const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    if (at == std::string::npos) ADD_FAILURE() << "scene text has no '" << from << "'";
+    else text.replace(at, from.size(), to);
+    return *this;
+  }
+
+  SceneVariant& append(const std::string& more) {
+    text += more;
+    return *this;
+  }
+
+  // 1-based line of the first occurrence of `needle` (0 if absent).
+  int line_of(const std::string& needle) const {
+    const auto at = text.find(needle);
+    if (at == std::string::npos) return 0;
+    return 1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n'));
+  }
+
+  fs::path write(const fs::path& dir, const std::string& name) const {
+    const fs::path path = dir / name;
+    std::ofstream(path) << text;
+    return path;
+  }
+};
+
+class StictionCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string pattern = (fs::path(::testing::TempDir()) / "stiction-cli-XXXXXX").string();
+    ASSERT_NE(mkdtemp(pattern.data()), nullptr) << "cannot create a temporary directory";
+    dir_ = pattern;
+  }
+
+  void TearDown() override {
+    std::error_code ignored;
+    if (!dir_.empty()) fs::remove_all(dir_, ignored);
+  }
+
+  // `stiction solve SCENE --quiet --out DIR/out EXTRA...`
+  CliRun solve(const std::string& scene, const std::vector<std::string>& extra = {}) const {
+    std::vector<std::string> args = {"solve", scene, "--quiet", "--out", (dir_ / "out").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return CliRun::of(args, dir_);
+  }
+
+  // Writes `scene` as DIR/file_name and solves it.
+  CliRun solve_variant(const SceneVariant& scene, const std::string& file_name) const {
+    return solve(scene.write(dir_, file_name).string());
+  }
+
+  fs::path dir_;
+};
+
+// The run ended with exit `code` and one clean error line containing every needle.
+void expect_error(const CliRun& run, int code, const std::vector<std::string>& needles) {
+  SCOPED_TRACE("stderr:\n" + run.err);
+  EXPECT_EQ(run.exit_code, code) << "(124: timed out; above 128: killed by signal)";
+  const auto lines = run.error_lines();
+  ASSERT_EQ(lines.size(), 1u) << "expected exactly one 'stiction: error:' line";
+  std::string last_line = run.err.substr(0, run.err.find_last_not_of('\n') + 1);
+  last_line = last_line.substr(last_line.find_last_of('\n') + 1);
+  EXPECT_EQ(last_line, lines.front()) << "the error line must end stderr";
+  for (const char* crash : {"terminate", "Segmentation", "Abort", "core dumped"})
+    EXPECT_EQ(run.err.find(crash), std::string::npos) << "crash marker '" << crash << "'";
+  EXPECT_FALSE(std::regex_search(run.err, std::regex(R"(\bnan\b)", std::regex::icase)))
+      << "NaN in the output";
+  for (const auto& needle : needles)
+    EXPECT_NE(lines.front().find(needle), std::string::npos) << "message lacks '" << needle << "'";
+}
+
+TEST_F(StictionCli, MalformedTomlNamesTheLine) {
+  const auto scene = SceneVariant().replace("E = 1000.0", "E = = 1000.0");
+  const int line = scene.line_of("E = = 1000.0");
+  expect_error(solve_variant(scene, "malformed.toml"), 2,
+               {"malformed.toml", "malformed TOML", "line " + std::to_string(line)});
+}
+
+TEST_F(StictionCli, UnknownKeyNamesFileKeyPathAndAcceptedKeys) {
+  const auto scene = SceneVariant().replace("material = \"soft\"", "matreial = \"soft\"");
+  expect_error(solve_variant(scene, "unknown-key.toml"), 2,
+               {"unknown-key.toml", "body[0].matreial", "accepted", "name", "material", "mesh"});
+}
+
+TEST_F(StictionCli, WrongTypeSaysMustBeANumber) {
+  const auto scene = SceneVariant().replace("E = 1000.0", "E = \"soft\"");
+  expect_error(solve_variant(scene, "wrong-type.toml"), 2,
+               {"wrong-type.toml", "material[0].E", "must be a number"});
+}
+
+TEST_F(StictionCli, MissingMeshFileIsNotFound) {
+  const auto scene = SceneVariant().replace(
+      "mesh = { generator = \"box\", size = [10.0, 1.0], h = 0.25 }",
+      "mesh = { file = \"no-such-mesh.msh\" }");
+  expect_error(solve_variant(scene, "missing-mesh.toml"), 2, {"no-such-mesh.msh", "not found"});
+}
+
+// tests/data/inverted-2d.msh: the 2 x 1 rectangle in four triangles with physical curves
+// "left" and "right"; its last triangle (cell 3, vertices (1,0) (1,1) (2,1)) is clockwise.
+TEST_F(StictionCli, InvertedElementNamesIndexAndCoordinates) {
+  fs::copy_file(data_dir / "inverted-2d.msh", dir_ / "inverted.msh");
+  const auto scene = SceneVariant()
+                         .replace("mesh = { generator = \"box\", size = [10.0, 1.0], h = 0.25 }",
+                                  "mesh = { file = \"inverted.msh\" }")
+                         .replace("\"xmin\"", "\"left\"")
+                         .replace("\"xmax\"", "\"right\"");
+  expect_error(solve_variant(scene, "inverted.toml"), 2,
+               {"beam", "inverted element 3", "(1, 0) (1, 1) (2, 1)"});
+}
+
+TEST_F(StictionCli, UnknownSolverListsValidBackends) {
+  expect_error(solve("cantilever-2d", {"--solver", "nosuch"}), 2, {"nosuch", "lu-mumps"});
+}
+
+TEST_F(StictionCli, NewtonFailureIsNumericalError) {
+  const auto scene =
+      SceneVariant().append("\n[newton]\nmax_iterations = 1\nrtol = 1e-30\natol = 1e-30\n");
+  expect_error(solve_variant(scene, "newton-fails.toml"), 3,
+               {"did not converge", "DIVERGED_MAX_ITERATIONS"});
+}
+
+TEST_F(StictionCli, UnknownSceneNameListsBuiltIns) {
+  expect_error(solve("no-such-scene"), 2,
+               {"no-such-scene", "block-compression", "cantilever-2d"});
+}
+
+TEST_F(StictionCli, UnusedPetscOptionIsReported) {
+  expect_error(solve("cantilever-2d", {"-lu_mumps_no_such_option", "3"}), 2,
+               {"-lu_mumps_no_such_option", "not used"});
+}
+
+TEST_F(StictionCli, UnknownBoundaryListsTheBodysBoundaries) {
+  const auto scene = SceneVariant().replace("\"xmin\"", "\"nosuch\"");
+  expect_error(solve_variant(scene, "unknown-boundary.toml"), 2,
+               {"unknown-boundary.toml", "dirichlet[0]", "nosuch", "xmin", "xmax", "ymin", "ymax"});
+}
+
+TEST_F(StictionCli, ValidRunWritesOutput) {
+  const CliRun run = solve("cantilever-2d");
+  EXPECT_EQ(run.exit_code, 0) << "stderr:\n" << run.err;
+  EXPECT_TRUE(run.error_lines().empty()) << run.err;
+  for (const char* file : {"steps.csv", "solution.pvd", "step-004.vtu"})
+    EXPECT_TRUE(fs::is_regular_file(dir_ / "out" / file)) << file << " not written";
+}
+
+}  // namespace
