@@ -62,16 +62,16 @@ void BM_ResidualAndTangent(benchmark::State& state) {
   scene::Scene& s = block(static_cast<int>(state.range(0)));
   const auto& space = *s.space;
   const auto u = compressed_state(space);
-  PetscMat A(fem::create_matrix(PETSC_COMM_WORLD, space));
+  fem::StiffnessMatrix K(PETSC_COMM_WORLD, space);
   std::vector<double> r(space.n_dofs());
   for (auto _ : state) {
-    MatZeroEntries(A);
     std::fill(r.begin(), r.end(), 0.0);
-    fem::assemble_internal(space, s.problem.cell_material, u, &r, A);
-    MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
-    MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
+    K.begin_assembly();
+    fem::assemble_internal(space, s.problem.cell_material, u, &r, &K);
+    K.end_assembly();
     benchmark::DoNotOptimize(r.data());
   }
+  Mat A = K.mat();
   state.counters["unknowns"] = space.n_dofs();
   state.counters["cells"] = s.mesh.n_cells();
   state.counters["MDof/s"] = benchmark::Counter(space.n_dofs() * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
@@ -98,10 +98,11 @@ BENCHMARK(BM_ResidualOnly)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRe
 void BM_MatMult(benchmark::State& state) {
   scene::Scene& s = block(static_cast<int>(state.range(0)));
   const auto& space = *s.space;
-  PetscMat A(fem::create_matrix(PETSC_COMM_WORLD, space));
-  fem::assemble_internal(space, s.problem.cell_material, compressed_state(space), nullptr, A);
-  MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
-  MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
+  fem::StiffnessMatrix K(PETSC_COMM_WORLD, space);
+  K.begin_assembly();
+  fem::assemble_internal(space, s.problem.cell_material, compressed_state(space), nullptr, &K);
+  K.end_assembly();
+  Mat A = K.mat();
   PetscVec x, y;
   MatCreateVecs(A, x.out(), y.out());
   VecSet(x, 1.0);

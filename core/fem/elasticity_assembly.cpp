@@ -72,13 +72,13 @@ Mat3 deformation_gradient(const double (&ue)[NB][D], const double (&G)[NB][D]) {
 
 template <int D, int NB>
 InternalForceStatus internal_kernel(const DisplacementSpace& space, const std::vector<const materials::Material*>& mat,
-                                    const std::vector<double>& u, std::vector<double>* residual, Mat tangent) {
+                                    const std::vector<double>& u, std::vector<double>* residual, StiffnessMatrix* tangent) {
   constexpr int ND = NB * D;
   const Tabulation tab = tabulate(D, space.kind(), 2);  // nodal and hierarchical P2 share NB
   const mesh::Mesh& mesh = space.mesh();
   InternalForceStatus status;
   int nodes[NB];
-  PetscInt idx[ND];
+  int idx[ND];
   double ue[NB][D], G[NB][D];
   Eigen::Matrix<double, ND, ND, Eigen::RowMajor> Ke;
   double re[ND];
@@ -142,7 +142,7 @@ InternalForceStatus internal_kernel(const DisplacementSpace& space, const std::v
         for (int b = 0; b < a; ++b)
           for (int i = 0; i < D; ++i)
             for (int k = 0; k < D; ++k) Ke(a * D + i, b * D + k) = Ke(b * D + k, a * D + i);
-      STICTION_PETSC(MatSetValues(tangent, ND, idx, ND, idx, Ke.data(), ADD_VALUES));
+      tangent->add(nodes, NB, Ke.data());
     }
   }
   return status;
@@ -192,45 +192,9 @@ void subtract_load(const DisplacementSpace& space, int sd, const std::vector<std
 
 }  // namespace
 
-Mat create_matrix(MPI_Comm comm, const DisplacementSpace& space) {
-  int size = 1;
-  MPI_Comm_size(comm, &size);
-  if (size != 1)
-    throw Error("stiction runs on one MPI rank for now (the mesh is not distributed yet)", ErrorKind::Input);
-  const int d = space.dim(), nn = space.n_nodes(), npc = space.nodes_per_cell();
-  std::vector<std::vector<int>> adj(nn);
-  std::vector<int> nodes(npc);
-  for (int c = 0; c < space.mesh().n_cells(); ++c) {
-    space.cell_nodes(c, nodes.data());
-    for (int a : nodes) adj[a].insert(adj[a].end(), nodes.begin(), nodes.end());
-  }
-  std::vector<PetscInt> rowptr{0}, cols;
-  for (int n = 0; n < nn; ++n) {
-    auto& row = adj[n];
-    std::sort(row.begin(), row.end());
-    row.erase(std::unique(row.begin(), row.end()), row.end());
-    for (int i = 0; i < d; ++i) {
-      for (int m : row)
-        for (int k = 0; k < d; ++k) cols.push_back(static_cast<PetscInt>(m) * d + k);
-      rowptr.push_back(static_cast<PetscInt>(cols.size()));
-    }
-    std::vector<int>().swap(row);
-  }
-  Mat A;
-  const PetscInt n = space.n_dofs();
-  STICTION_PETSC(MatCreate(comm, &A));
-  STICTION_PETSC(MatSetSizes(A, n, n, n, n));
-  STICTION_PETSC(MatSetType(A, MATAIJ));
-  STICTION_PETSC(MatSetBlockSize(A, d));
-  STICTION_PETSC(MatSeqAIJSetPreallocationCSR(A, rowptr.data(), cols.data(), nullptr));
-  STICTION_PETSC(MatMPIAIJSetPreallocationCSR(A, rowptr.data(), cols.data(), nullptr));
-  STICTION_PETSC(MatSetOption(A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
-  return A;
-}
-
 InternalForceStatus assemble_internal(const DisplacementSpace& space,
                                       const std::vector<const materials::Material*>& cell_material,
-                                      const std::vector<double>& u, std::vector<double>* residual, Mat tangent) {
+                                      const std::vector<double>& u, std::vector<double>* residual, StiffnessMatrix* tangent) {
   return dispatch(space, [&](auto D, auto NB) {
     return internal_kernel<decltype(D)::value, decltype(NB)::value>(space, cell_material, u, residual, tangent);
   });

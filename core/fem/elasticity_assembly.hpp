@@ -4,18 +4,13 @@
 //   K_ab(i,k) = int_Omega A_iJkL dN_a/dX_J dN_b/dX_L
 // The internal part loops over cells with a kernel specialised for the dimension and the
 // number of shape functions; loads are dead loads on the reference configuration.
-#include <petscmat.h>
-
 #include <vector>
 
 #include "fem/displacement_space.hpp"
+#include "fem/stiffness_matrix.hpp"
 #include "materials/material.hpp"
 
 namespace stiction::fem {
-
-// Matrix with the exact nonzero pattern of the space (block size = dim), zero-valued.
-// Created on `comm`; today every rank holds the whole mesh, so only one rank is supported.
-Mat create_matrix(MPI_Comm comm, const DisplacementSpace& space);
 
 struct InternalForceStatus {
   double min_jacobian = 1.0;  // smallest det F met at a quadrature point
@@ -23,12 +18,13 @@ struct InternalForceStatus {
 };
 
 // Adds the internal force vector (residual may be null) and the tangent (tangent may be
-// null; values are ADDED, the caller assembles) for the coefficient vector u.
+// null; values are added between its begin_assembly and end_assembly, which the caller
+// calls) for the coefficient vector u.
 // cell_material[c] is the law of cell c.
 InternalForceStatus assemble_internal(const DisplacementSpace& space,
                                       const std::vector<const materials::Material*>& cell_material,
                                       const std::vector<double>& u, std::vector<double>* residual,
-                                      Mat tangent);
+                                      StiffnessMatrix* tangent);
 
 // residual -= int_Omega f N_a (f may vary in space).
 void subtract_body_force(const DisplacementSpace& space, const VectorField& f, std::vector<double>& residual);

@@ -98,7 +98,9 @@ QuasiStaticSolver::QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& pro
   u_.assign(space.n_dofs(), 0.0);
   system_.comm = comm;
   system_.block_size = space.dim();
-  *system_.matrix.out() = fem::create_matrix(comm, space);
+  stiffness_ = std::make_unique<fem::StiffnessMatrix>(comm, space);
+  STICTION_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(stiffness_->mat())));
+  *system_.matrix.out() = stiffness_->mat();
   STICTION_PETSC(MatCreateVecs(system_.matrix, nullptr, system_.rhs.out()));
   auto add_field = [&](const char* name, std::pair<int, int> range) {
     FieldBlock f{name, {}, space.dim()};
@@ -171,10 +173,9 @@ std::map<std::string, std::array<double, 3>> QuasiStaticSolver::reactions(const 
 
 void QuasiStaticSolver::assemble_system(int step, const std::vector<double>& r, bool lift) {
   Mat A = system_.matrix;
-  STICTION_PETSC(MatZeroEntries(A));
-  fem::assemble_internal(*problem_.space, problem_.cell_material, u_, nullptr, A);
-  STICTION_PETSC(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
-  STICTION_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  stiffness_->begin_assembly();
+  fem::assemble_internal(*problem_.space, problem_.cell_material, u_, nullptr, stiffness_.get());
+  stiffness_->end_assembly();
   std::vector<double> b(r.size());
   for (size_t i = 0; i < r.size(); ++i) b[i] = -r[i];
   copy_to_vec(b, system_.rhs);

@@ -13,6 +13,7 @@
 #include <chrono>
 #include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -90,7 +91,8 @@ private:
   NewtonSettings settings_;
   LinearSolver& linear_;
   std::vector<double> u_;
-  NewtonSystem system_;
+  std::unique_ptr<fem::StiffnessMatrix> stiffness_;
+  NewtonSystem system_;  // its matrix is stiffness_'s
   std::vector<PetscInt> constrained_;         // sorted constrained dofs
   std::vector<char> is_constrained_;          // per dof
   std::vector<std::vector<int>> bc_nodes_;    // per Dirichlet condition

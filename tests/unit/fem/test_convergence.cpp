@@ -85,10 +85,12 @@ TEST_P(LinearBlockIsP1, ToRoundOff) {
     std::vector<double> u;
     space.interpolate(deform, u);
     residual.assign(space.n_dofs(), 0.0);
-    Mat A = fem::create_matrix(PETSC_COMM_WORLD, space);
-    fem::assemble_internal(space, mats, u, &residual, A);
-    MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
-    MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
+    fem::StiffnessMatrix K(PETSC_COMM_WORLD, space);
+    K.begin_assembly();
+    fem::assemble_internal(space, mats, u, &residual, &K);
+    K.end_assembly();
+    Mat A = K.mat();
+    PetscObjectReference(reinterpret_cast<PetscObject>(A));
     return A;
   };
   std::vector<double> r1, r2;

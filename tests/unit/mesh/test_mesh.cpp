@@ -139,7 +139,11 @@ TEST_P(GmshRoundTrip, ReadsWhatGmshWrote) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Formats, GmshRoundTrip,
-                         ::testing::Combine(::testing::Values(2, 3), ::testing::Values(false, true)));
+                         ::testing::Combine(::testing::Values(2, 3), ::testing::Values(false, true)),
+                         [](const auto& info) {
+                           return std::to_string(std::get<0>(info.param)) + "D_" +
+                                  (std::get<1>(info.param) ? "binary" : "ascii");
+                         });
 
 TEST(GmshRead, MissingFileIsAnError) {
   EXPECT_THROW(read_msh("/nonexistent/mesh.msh"), Error);

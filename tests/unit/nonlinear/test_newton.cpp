@@ -17,6 +17,13 @@ namespace {
 
 using fem::BasisKind;
 
+std::string name_of(const ::testing::TestParamInfo<std::tuple<int, BasisKind>>& info) {
+  std::string basis = fem::to_string(std::get<1>(info.param));
+  for (char& c : basis)
+    if (c == '-') c = '_';
+  return std::to_string(std::get<0>(info.param)) + "D_" + basis;
+}
+
 class TangentVsFiniteDifferences : public ::testing::TestWithParam<std::tuple<int, BasisKind>> {};
 
 TEST_P(TangentVsFiniteDifferences, RelativeError1e6) {
@@ -31,12 +38,14 @@ TEST_P(TangentVsFiniteDifferences, RelativeError1e6) {
   for (auto& x : u) x = 0.03 * dist(rng);
   for (auto& x : v) x = dist(rng);
 
-  Mat K = fem::create_matrix(PETSC_COMM_WORLD, space);
+  fem::StiffnessMatrix stiffness(PETSC_COMM_WORLD, space);
+  EXPECT_TRUE(stiffness.direct_insertion());
   std::vector<double> r0(space.n_dofs(), 0.0);
-  const auto status = fem::assemble_internal(space, mats, u, &r0, K);
+  stiffness.begin_assembly();
+  const auto status = fem::assemble_internal(space, mats, u, &r0, &stiffness);
+  stiffness.end_assembly();
   ASSERT_LT(status.inverted_cell, 0);
-  MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY);
-  MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY);
+  Mat K = stiffness.mat();
   Vec vv, Kv;
   MatCreateVecs(K, &vv, &Kv);
   PetscScalar* a;
@@ -63,13 +72,13 @@ TEST_P(TangentVsFiniteDifferences, RelativeError1e6) {
   EXPECT_GT(norm, 0);
   VecDestroy(&vv);
   VecDestroy(&Kv);
-  MatDestroy(&K);
 }
 
 INSTANTIATE_TEST_SUITE_P(All, TangentVsFiniteDifferences,
                          ::testing::Combine(::testing::Values(2, 3),
                                             ::testing::Values(BasisKind::P1, BasisKind::P2Nodal,
-                                                              BasisKind::P2Hierarchical)));
+                                                              BasisKind::P2Hierarchical)),
+                         name_of);
 
 // Uniaxial stretch with rollers: the exact solution is homogeneous, F = diag(1+d, s, s)
 // (3D) or diag(1+d, s) with F33 = 1 (plane strain), where the lateral stretch s makes the
@@ -151,7 +160,8 @@ TEST_P(HomogeneousStretch, ExactToRoundOff) {
 
 INSTANTIATE_TEST_SUITE_P(All, HomogeneousStretch,
                          ::testing::Combine(::testing::Values(2, 3),
-                                            ::testing::Values(BasisKind::P1, BasisKind::P2Hierarchical)));
+                                            ::testing::Values(BasisKind::P1, BasisKind::P2Hierarchical)),
+                         name_of);
 
 // Shared set-up: a plane-strain cantilever loaded by an end shear traction (large rotation).
 struct Cantilever {
@@ -223,15 +233,14 @@ TEST(Newton, SystemCarriesFieldsAndNearNullSpace) {
   MatGetBlockSize(sys.matrix, &bs);
   EXPECT_EQ(bs, 2);
   // Rigid-body modes annihilate the unconstrained stiffness at the reference state.
-  Mat K = fem::create_matrix(PETSC_COMM_WORLD, c.space);
+  fem::StiffnessMatrix K(PETSC_COMM_WORLD, c.space);
   std::vector<double> u(c.space.n_dofs(), 0.0);
-  fem::assemble_internal(c.space, c.p.cell_material, u, nullptr, K);
-  MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY);
-  MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY);
+  K.begin_assembly();
+  fem::assemble_internal(c.space, c.p.cell_material, u, nullptr, &K);
+  K.end_assembly();
   PetscBool is_null;
-  MatNullSpaceTest(sys.near_null_space, K, &is_null);
+  MatNullSpaceTest(sys.near_null_space, K.mat(), &is_null);
   EXPECT_TRUE(is_null);
-  MatDestroy(&K);
 }
 
 }  // namespace
