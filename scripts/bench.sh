@@ -18,7 +18,7 @@ report="$out/report.md"
   echo "- git revision: $(git rev-parse --short=12 HEAD 2>/dev/null || echo unknown)$(git diff --quiet HEAD 2>/dev/null || echo ' (with uncommitted changes)')"
   echo "- PETSc: $(grep -m1 '^Version:' /usr/lib/petscdir/petsc*/x86_64-linux-gnu-real/lib/pkgconfig/PETSc.pc 2>/dev/null | cut -d' ' -f2 || echo unknown)"
   echo "- BLAS: $(readlink -f /usr/lib/x86_64-linux-gnu/libblas.so.3) (OMP_NUM_THREADS=$OMP_NUM_THREADS OPENBLAS_NUM_THREADS=$OPENBLAS_NUM_THREADS)"
-  echo "- machine: $(nproc) cores, $(awk '/MemTotal/ {printf "%.1f GiB", $2/1048576}' /proc/meminfo)"
+  echo "- machine: $(nproc --all) cores, $(awk '/MemTotal/ {printf "%.1f GiB", $2/1048576}' /proc/meminfo)"
   echo "- date: $(date -u '+%Y-%m-%d %H:%M:%S UTC')"
   echo
   echo "## Built-in scenes, level 0, lu-mumps"
@@ -41,11 +41,11 @@ for scene in $("$build/stiction" scenes | awk '{print $1}'); do
 done
 
 echo "bench: assembly micro-benchmarks" >&2
-"$build/benchmarks/bench_assembly" --benchmark_format=json --benchmark_out="$out/assembly.json" \
+"$build/benchmarks/bench_assembly" --benchmark_out="$out/assembly.json" \
     --benchmark_out_format=json > "$out/assembly.txt"
 {
   echo
-  echo "## Assembly (block-compression, P2 hierarchical, Neo-Hookean, one core)"
+  echo "## Assembly and SpMV (block-compression, P2 hierarchical, Neo-Hookean, one core)"
   echo
   echo "\`$build/benchmarks/bench_assembly\`; raw output in \`$out/assembly.txt\` and \`assembly.json\`."
   echo

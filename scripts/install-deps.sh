@@ -11,7 +11,7 @@ packages=(
   libeigen3-dev
   googletest libgtest-dev libgmock-dev
   libbenchmark-dev
-  libgmsh-dev gmsh          # Gmsh 4.8 C++ API (OpenCASCADE)
+  libgmsh-dev               # Gmsh 4.8 C++ API (OpenCASCADE)
   libtomlplusplus-dev
   libcli11-dev
   libfmt-dev

@@ -7,13 +7,17 @@
 
 namespace stiction::solvers {
 
-std::unique_ptr<nonlinear::LinearSolver> make_lu_mumps(MPI_Comm comm);
+#define STICTION_BACKEND(id, name, description, package) \
+  std::unique_ptr<nonlinear::LinearSolver> make_##id(MPI_Comm comm);
+#include "backend_list.hpp"
+#undef STICTION_BACKEND
 
 namespace {
 
-// Empty when PETSc was built with the external package, else the reason.
+// Empty when PETSc was built with the external package (or none is needed), else the reason.
 std::function<std::string()> needs_package(const char* package) {
   return [package]() -> std::string {
+    if (!*package) return "";
     PetscBool has = PETSC_FALSE;
     PetscHasExternalPackage(package, &has);
     return has ? "" : fmt::format("PETSc was built without {}", package);
@@ -24,7 +28,9 @@ std::function<std::string()> needs_package(const char* package) {
 
 const std::vector<BackendInfo>& backends() {
   static const std::vector<BackendInfo> all{
-      {"lu-mumps", "global LU factorisation by MUMPS (the paper's GlobalLU)", needs_package("mumps"), make_lu_mumps},
+#define STICTION_BACKEND(id, name, description, package) {name, description, needs_package(package), make_##id},
+#include "backend_list.hpp"
+#undef STICTION_BACKEND
   };
   return all;
 }

@@ -1,7 +1,7 @@
 #pragma once
-// The explicit list of linear-solver backends (style.md: one explicit register_all, no
-// static self-registration the linker could drop). Adding a backend is one new file plus
-// one line in registry.cpp.
+// The registry of linear-solver backends, built from the explicit list in backend_list.hpp
+// (no static self-registration the linker could drop). Adding a backend is one new file
+// plus one line in that list.
 #include <functional>
 #include <memory>
 #include <string>
