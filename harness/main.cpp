@@ -67,11 +67,16 @@ void reject_unused(const std::set<std::string>& given) {
 int main(int argc, char** argv) {
   std::vector<char*> cli_argv{argv[0]}, petsc_argv{argv[0]};
   std::set<std::string> petsc_given;
+  harness::SolveOptions solve;
   for (int i = 1; i < argc; ++i) {
     if (is_petsc_option(argv[i])) {
       petsc_argv.push_back(argv[i]);
       petsc_given.insert(argv[i]);
-      if (i + 1 < argc && looks_like_value(argv[i + 1])) petsc_argv.push_back(argv[++i]);
+      solve.petsc_options += std::string(argv[i]) + "\n";
+      if (i + 1 < argc && looks_like_value(argv[i + 1])) {
+        petsc_argv.push_back(argv[++i]);
+        solve.petsc_options.insert(solve.petsc_options.size() - 1, std::string(" ") + argv[i]);
+      }
     } else {
       cli_argv.push_back(argv[i]);
     }
@@ -80,13 +85,13 @@ int main(int argc, char** argv) {
   CLI::App app{"stiction: large-deformation frictional contact by FEM, and a benchmark of the linear solvers of its "
                "Newton systems"};
   app.require_subcommand(1);
-  harness::SolveOptions solve;
   auto* solve_cmd = app.add_subcommand("solve", "solve a scene with one linear-solver backend");
   solve_cmd->add_option("scene", solve.scene, "scene file (.toml) or built-in scene name")->required();
   solve_cmd->add_option("--level", solve.level, "mesh level (uniform refinements of level 0)")->check(CLI::Range(0, 4));
   solve_cmd->add_option("--solver", solve.solver, "linear-solver backend (see `stiction solvers`)");
   solve_cmd->add_option("--out", solve.out_dir, "output directory (default out/<scene>-L<level>)");
   solve_cmd->add_flag("--quiet", solve.quiet, "no progress on stderr");
+  solve_cmd->add_option("--metrics", solve.metrics_path, "write a TOML record of the run (used by `stiction bench`)");
   bool schema = false;
   auto* scenes_cmd = app.add_subcommand("scenes", "list the built-in scenes");
   scenes_cmd->add_flag("--schema", schema, "print every key a scene file accepts");

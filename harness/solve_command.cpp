@@ -3,12 +3,15 @@
 #include <fmt/format.h>
 #include <fmt/os.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 
 #include "builtin_scenes.hpp"
 #include "common/error.hpp"
+#include "ksp_solver.hpp"
 #include "registry.hpp"
+#include "run_metrics.hpp"
 #include "vtu_writer.hpp"
 
 namespace stiction::harness {
@@ -56,6 +59,7 @@ private:
 }  // namespace
 
 void run_solve(const SolveOptions& o, const RunInfo& info) {
+  const auto t_start = std::chrono::steady_clock::now();
   auto scene = open_scene(o.scene, o.level);
   auto solver = solvers::create_solver(o.solver, PETSC_COMM_WORLD);
   const std::string out_dir = o.out_dir.empty() ? fmt::format("out/{}-L{}", scene->name, scene->level) : o.out_dir;
@@ -97,6 +101,13 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
     desc << solver->describe();
   }
   const auto& last = results.back();
+  if (!o.metrics_path.empty()) {
+    RunSummary summary{o.solver, solvers::default_options(o.solver) + o.petsc_options,
+                       std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count(),
+                       last.converged(), last.converged() ? "CONVERGED" : nonlinear::to_string(last.reason),
+                       last.detail};
+    write_metrics(o.metrics_path, *scene, summary, results);
+  }
   if (!last.converged())
     throw Error(fmt::format("Newton did not converge at load step {} of scene '{}': {}{}{}", last.step, scene->name,
                             nonlinear::to_string(last.reason), last.detail.empty() ? "" : ": ", last.detail),

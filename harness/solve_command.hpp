@@ -12,6 +12,8 @@ struct SolveOptions {
   int level = -1;                // -1: the scene's own
   std::string solver = "lu-mumps";
   std::string out_dir;           // default out/<scene>-L<level>
+  std::string metrics_path;      // TOML record of the run for the sweep harness (optional)
+  std::string petsc_options;     // the PETSc options given on the command line, for reports
   bool quiet = false;
 };
 

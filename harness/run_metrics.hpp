@@ -1,0 +1,37 @@
+#pragma once
+// What one `stiction solve` run measured, written as TOML (--metrics FILE) so the sweep
+// harness can run every (scene, solver, level) in a child process and read the results.
+//
+// [run]            scene, level, solver, basis, unknowns (total, u_l, u_q), converged,
+//                  reason, detail, load_steps, load_steps_completed, newton_iterations,
+//                  linear_solves, krylov_iterations, wall_seconds, assembly_seconds,
+//                  setup_seconds, solve_seconds, peak_rss_mb, backend_options
+// [[step]]         step, converged, reason, newton_iterations, initial_residual,
+//                  reference_residual, final_residual, wall_seconds
+// [[linear_solve]] step, newton_iteration, converged, reason, krylov_iterations,
+//                  initial_residual, final_residual, setup_seconds, solve_seconds,
+//                  assembly_seconds, and the backend's extra figures (mumps_memory_MB, ...)
+#include <string>
+#include <vector>
+
+#include "nonlinear/newton.hpp"
+#include "scene/scene.hpp"
+
+namespace stiction::harness {
+
+struct RunSummary {
+  std::string solver;
+  std::string backend_options;  // defaults file + command-line PETSc options
+  double wall_seconds = 0;
+  bool converged = false;
+  std::string reason;  // CONVERGED, or the Newton reason of the failed step
+  std::string detail;
+};
+
+void write_metrics(const std::string& path, const scene::Scene& scene, const RunSummary& summary,
+                   const std::vector<nonlinear::StepResult>& steps);
+
+// Peak resident memory of this process (VmHWM) in MB.
+double peak_rss_mb();
+
+}  // namespace stiction::harness
