@@ -1,16 +1,16 @@
 #include "ksp_solver.hpp"
 
+#include "solver_figures.hpp"
+#include "stdout_capture.hpp"
+
 #include <fmt/format.h>
 
 #include <chrono>
+#include <memory>
 #include <cmath>
 #include <cstring>
 #include <map>
-#include <cstdio>
-#include <fstream>
 #include <sstream>
-
-#include <unistd.h>
 
 namespace stiction::solvers {
 
@@ -64,10 +64,14 @@ KspSolver::KspSolver(std::string name, MPI_Comm comm) : name_(std::move(name)) {
 
 void KspSolver::setup(const nonlinear::NewtonSystem& system) {
   const auto t0 = std::chrono::steady_clock::now();
+  // Some solvers print set-up statistics (hypre): keep them for the figures and the view.
+  std::unique_ptr<StdoutCapture> capture;
+  if (capture_setup_output()) capture = std::make_unique<StdoutCapture>();
   STICTION_PETSC(KSPSetOperators(ksp_, system.matrix, system.matrix));
   configure(system);
   STICTION_PETSC(KSPSetFromOptions(ksp_));
   STICTION_PETSC(KSPSetUp(ksp_));
+  if (capture) setup_output_ = capture->text();
   setup_seconds_ = seconds_since(t0);
   setup_extra_.clear();
   collect_setup_figures(setup_extra_);
@@ -101,20 +105,9 @@ nonlinear::LinearSolveStats KspSolver::solve(const nonlinear::NewtonSystem& syst
 }
 
 std::string KspSolver::describe() const {
-  // The string viewer prints one line only: go through an ASCII file for the full view.
-  char path[] = "/tmp/stiction-kspview-XXXXXX";
-  const int fd = mkstemp(path);
-  if (fd < 0) return "(KSP view unavailable)";
-  close(fd);
-  PetscViewer viewer;
-  STICTION_PETSC(PetscViewerASCIIOpen(PETSC_COMM_SELF, path, &viewer));
-  STICTION_PETSC(KSPView(ksp_, viewer));
-  STICTION_PETSC(PetscViewerDestroy(&viewer));
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  std::remove(path);
-  return text.str();
+  std::string text = full_view(ksp_);
+  if (!setup_output_.empty()) text += "\nSet-up statistics printed by the solver:\n" + setup_output_;
+  return text;
 }
 
 }  // namespace stiction::solvers

@@ -24,8 +24,11 @@ public:
   std::string describe() const override;
 
 protected:
-  // Backend figures after set-up (factorisation memory, AMG complexity, ...).
+  // Backend figures after set-up (factorisation memory, AMG complexity, ...);
+  // setup_output is what set-up printed on stdout when capture_setup_output() is true.
   virtual void collect_setup_figures(std::map<std::string, double>& extra) const {}
+  virtual bool capture_setup_output() const { return false; }
+  const std::string& setup_output() const { return setup_output_; }
   // Hook to configure the KSP/PC from the system (field splits, ...) before KSPSetUp.
   virtual void configure(const nonlinear::NewtonSystem& system) {}
   KSP ksp() const { return ksp_; }
@@ -34,6 +37,7 @@ private:
   std::string name_;
   PetscKSP ksp_;
   double setup_seconds_ = 0;
+  std::string setup_output_;
   std::map<std::string, double> setup_extra_;
 };
 

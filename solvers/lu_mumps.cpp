@@ -1,10 +1,8 @@
 // lu-mumps: global LU by MUMPS (the paper's GlobalLU). Reports MUMPS's own memory figure
 // INFOG(22) (MB effectively used), the factorisation flops RINFOG(3) and the ordering that
 // actually ran, INFOG(7) (Debian's MUMPS silently falls back to PORD).
-#include <petscmat.h>
-
 #include "ksp_solver.hpp"
-#include "registry.hpp"
+#include "solver_figures.hpp"
 
 namespace stiction::solvers {
 
@@ -16,16 +14,7 @@ public:
 
 protected:
   void collect_setup_figures(std::map<std::string, double>& extra) const override {
-    PC pc;
-    Mat F;
-    if (KSPGetPC(ksp(), &pc) || PCFactorGetMatrix(pc, &F)) return;
-    MatSolverType type;
-    if (MatFactorGetSolverType(F, &type) || std::string(type) != MATSOLVERMUMPS) return;
-    PetscInt mem = 0, ordering = 0;
-    PetscReal flops = 0;
-    if (!MatMumpsGetInfog(F, 22, &mem)) extra["mumps_memory_MB"] = static_cast<double>(mem);
-    if (!MatMumpsGetInfog(F, 7, &ordering)) extra["mumps_ordering"] = static_cast<double>(ordering);
-    if (!MatMumpsGetRinfog(F, 3, &flops)) extra["mumps_factor_flops"] = flops;
+    add_mumps_figures(ksp(), "", extra);
   }
 };
 

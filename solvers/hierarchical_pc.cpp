@@ -1,0 +1,135 @@
+#include "hierarchical_pc.hpp"
+
+#include <vector>
+
+namespace stiction::solvers {
+
+namespace {
+
+// The rigid-body modes restricted to u_l (for the hierarchical basis these are exactly the
+// P1 modes), orthonormalised as MatNullSpaceCreate requires.
+MatNullSpace restrict_modes(MatNullSpace full, IS is) {
+  PetscBool has_constant;
+  PetscInt n;
+  const Vec* vecs;
+  STICTION_PETSC(MatNullSpaceGetVecs(full, &has_constant, &n, &vecs));
+  std::vector<Vec> sub(n);
+  for (PetscInt i = 0; i < n; ++i) {
+    Vec view;
+    STICTION_PETSC(VecGetSubVector(vecs[i], is, &view));
+    STICTION_PETSC(VecDuplicate(view, &sub[i]));
+    STICTION_PETSC(VecCopy(view, sub[i]));
+    STICTION_PETSC(VecRestoreSubVector(vecs[i], is, &view));
+    for (PetscInt j = 0; j < i; ++j) {
+      PetscScalar dot;
+      STICTION_PETSC(VecDot(sub[i], sub[j], &dot));
+      STICTION_PETSC(VecAXPY(sub[i], -dot, sub[j]));
+    }
+    STICTION_PETSC(VecNormalize(sub[i], nullptr));
+  }
+  MatNullSpace nsp;
+  STICTION_PETSC(MatNullSpaceCreate(PetscObjectComm(reinterpret_cast<PetscObject>(full)), PETSC_FALSE, n, sub.data(), &nsp));
+  for (Vec& v : sub) VecDestroy(&v);
+  return nsp;
+}
+
+PetscErrorCode shell_apply(PC pc, Vec r, Vec x) {
+  void* ctx;
+  PetscCall(PCShellGetContext(pc, &ctx));
+  try {
+    static_cast<const HierarchicalPreconditioner*>(ctx)->apply(r, x);
+  } catch (const std::exception& e) {
+    SETERRQ(PetscObjectComm(reinterpret_cast<PetscObject>(pc)), PETSC_ERR_LIB, "%s", e.what());
+  }
+  return 0;
+}
+
+}  // namespace
+
+HierarchicalPreconditioner::HierarchicalPreconditioner(MPI_Comm comm, const std::string& prefix) {
+  STICTION_PETSC(KSPCreate(comm, ksp_ll_.out()));
+  STICTION_PETSC(KSPSetOptionsPrefix(ksp_ll_, (prefix + "ll_").c_str()));
+  STICTION_PETSC(KSPCreate(comm, ksp_qq_.out()));
+  STICTION_PETSC(KSPSetOptionsPrefix(ksp_qq_, (prefix + "qq_").c_str()));
+}
+
+void HierarchicalPreconditioner::setup(Mat A, IS linear, IS quadratic, MatNullSpace near_null_space) {
+  STICTION_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(linear)));
+  STICTION_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(quadratic)));
+  *is_l_.out() = linear;
+  *is_q_.out() = quadratic;
+  // Reuse the sub-matrices' storage when the pattern is unchanged (every Newton step).
+  const MatReuse reuse = A_ll_ ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX;
+  Mat ll = A_ll_, ql = A_ql_, qq = A_qq_;
+  STICTION_PETSC(MatCreateSubMatrix(A, linear, linear, reuse, &ll));
+  STICTION_PETSC(MatCreateSubMatrix(A, quadratic, linear, reuse, &ql));
+  STICTION_PETSC(MatCreateSubMatrix(A, quadratic, quadratic, reuse, &qq));
+  if (reuse == MAT_INITIAL_MATRIX) {
+    *A_ll_.out() = ll;
+    *A_ql_.out() = ql;
+    *A_qq_.out() = qq;
+  }
+  if (form_ == SchurForm::Full) {
+    Mat lq = A_lq_;
+    STICTION_PETSC(MatCreateSubMatrix(A, linear, quadratic, A_lq_ ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &lq));
+    if (!A_lq_) *A_lq_.out() = lq;
+  }
+  PetscInt bs;
+  STICTION_PETSC(MatGetBlockSize(A, &bs));
+  STICTION_PETSC(MatSetBlockSize(A_ll_, bs));  // hypre's nodal coarsening needs it
+  if (near_null_space) {
+    PetscNullSpace sub(restrict_modes(near_null_space, linear));
+    STICTION_PETSC(MatSetNearNullSpace(A_ll_, sub));
+  }
+  STICTION_PETSC(KSPSetOperators(ksp_ll_, A_ll_, A_ll_));
+  STICTION_PETSC(KSPSetOperators(ksp_qq_, A_qq_, A_qq_));
+  for (KSP k : {ksp_ll_.get(), ksp_qq_.get()}) {
+    STICTION_PETSC(KSPSetFromOptions(k));
+    STICTION_PETSC(KSPSetUp(k));
+  }
+  if (!work_q_) {
+    STICTION_PETSC(MatCreateVecs(A_qq_, work_q_.out(), nullptr));
+    STICTION_PETSC(MatCreateVecs(A_ll_, work_l_.out(), work_l2_.out()));
+  }
+}
+
+void HierarchicalPreconditioner::set_quadratic_operator(Mat S) {
+  STICTION_PETSC(KSPSetOperators(ksp_qq_, S, S));
+  STICTION_PETSC(KSPSetUp(ksp_qq_));
+}
+
+Mat HierarchicalPreconditioner::block(int row, int col) const {
+  if (row == 0) return col == 0 ? A_ll_.get() : A_lq_.get();
+  return col == 0 ? A_ql_.get() : A_qq_.get();
+}
+
+void HierarchicalPreconditioner::apply(Vec r, Vec x) const {
+  Vec rl, rq, xl, xq;
+  STICTION_PETSC(VecGetSubVector(r, is_l_, &rl));
+  STICTION_PETSC(VecGetSubVector(r, is_q_, &rq));
+  STICTION_PETSC(VecGetSubVector(x, is_l_, &xl));
+  STICTION_PETSC(VecGetSubVector(x, is_q_, &xq));
+  Vec yl = form_ == SchurForm::Full ? work_l_.get() : xl;
+  STICTION_PETSC(KSPSolve(ksp_ll_, rl, yl));                 // y_l = A_ll^-1 r_l
+  STICTION_PETSC(MatMult(A_ql_, yl, work_q_));
+  STICTION_PETSC(VecAYPX(work_q_, -1.0, rq));                // r_q - A_ql y_l
+  STICTION_PETSC(KSPSolve(ksp_qq_, work_q_, xq));            // x_q = S~^-1 (...)
+  if (form_ == SchurForm::Full) {
+    STICTION_PETSC(MatMult(A_lq_, xq, work_l2_));
+    STICTION_PETSC(VecAYPX(work_l2_, -1.0, rl));             // r_l - A_lq x_q
+    STICTION_PETSC(KSPSolve(ksp_ll_, work_l2_, xl));         // x_l = A_ll^-1 (...)
+  }
+  STICTION_PETSC(VecRestoreSubVector(x, is_q_, &xq));
+  STICTION_PETSC(VecRestoreSubVector(x, is_l_, &xl));
+  STICTION_PETSC(VecRestoreSubVector(r, is_q_, &rq));
+  STICTION_PETSC(VecRestoreSubVector(r, is_l_, &rl));
+}
+
+void use_as_shell(PC pc, HierarchicalPreconditioner& hp) {
+  STICTION_PETSC(PCSetType(pc, PCSHELL));
+  STICTION_PETSC(PCShellSetContext(pc, &hp));
+  STICTION_PETSC(PCShellSetApply(pc, shell_apply));
+  STICTION_PETSC(PCShellSetName(pc, "HP (10): A_ll^-1 then S~^-1 on u_q; see the ll_ and qq_ solvers below"));
+}
+
+}  // namespace stiction::solvers

@@ -1,0 +1,42 @@
+#include "schur_solver.hpp"
+
+#include "common/error.hpp"
+#include "solver_figures.hpp"
+#include "stdout_capture.hpp"
+
+namespace stiction::solvers {
+
+SchurSolver::SchurSolver(const std::string& name, MPI_Comm comm)
+    : KspSolver(name, comm), hp_(comm, options_prefix(name)) {}
+
+void SchurSolver::configure(const nonlinear::NewtonSystem& system) {
+  const auto* linear = system.field("u_l");
+  const auto* quadratic = system.field("u_q");
+  if (!linear || !quadratic)
+    throw Error(name() + " needs a P2 displacement field split into u_l and u_q (scene basis p2-hierarchical)");
+  PC pc;
+  STICTION_PETSC(KSPGetPC(ksp(), &pc));
+  use_as_shell(pc, hp_);
+  hp_.setup(system.matrix, linear->is, quadratic->is, system.near_null_space);
+}
+
+void SchurSolver::collect_setup_figures(std::map<std::string, double>& extra) const {
+  add_mumps_figures(hp_.linear_solver(), "ll_", extra);
+  const double c = parse_operator_complexity(setup_output());
+  if (c > 0) extra["amg_operator_complexity"] = c;
+}
+
+std::string SchurSolver::describe() const {
+  return KspSolver::describe() + "\nLinear block A_ll solver:\n" + full_view(hp_.linear_solver()) +
+         "\nQuadratic block solver:\n" + full_view(hp_.quadratic_solver());
+}
+
+std::unique_ptr<nonlinear::LinearSolver> make_schur_lu(MPI_Comm comm) {
+  return std::make_unique<SchurSolver>("schur-lu", comm);
+}
+
+std::unique_ptr<nonlinear::LinearSolver> make_schur_amg(MPI_Comm comm) {
+  return std::make_unique<SchurSolver>("schur-amg", comm);
+}
+
+}  // namespace stiction::solvers

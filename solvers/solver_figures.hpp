@@ -1,0 +1,18 @@
+#pragma once
+// Figures and descriptions shared by the backends.
+#include <map>
+#include <string>
+
+#include <petscksp.h>
+
+namespace stiction::solvers {
+
+// MUMPS's own figures for a KSP whose PC is an LU/Cholesky factorisation by MUMPS:
+// INFOG(22) memory effectively used (MB), INFOG(7) ordering used, RINFOG(3) flops.
+// Keys get `key_prefix` ("" or "ll_"). Does nothing for other PCs.
+void add_mumps_figures(KSP ksp, const std::string& key_prefix, std::map<std::string, double>& extra);
+
+// Full ASCII KSPView of a solver (PETSc's string viewer prints one line only).
+std::string full_view(KSP ksp);
+
+}  // namespace stiction::solvers
