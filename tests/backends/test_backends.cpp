@@ -1,0 +1,123 @@
+// Every available backend brings the same scenes to the same converged solution as
+// lu-mumps (relative difference < 1e-8) with Newton iteration counts within +-1 per step.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+#include "builtin_scenes.hpp"
+#include "nonlinear/newton.hpp"
+#include "registry.hpp"
+#include "scene/scene.hpp"
+
+namespace stiction {
+namespace {
+
+// A small 3D Neo-Hookean block compressed between a clamp and a frictionless plate.
+const char* kSmallBlock = R"(
+[[material]]
+name = "rubber"
+model = "neo-hookean"
+E = 1.0
+nu = 0.3
+
+[[body]]
+name = "block"
+material = "rubber"
+mesh = { generator = "structured-box", size = [5.0, 5.0, 1.6], cells = [4, 4, 2] }
+
+[[dirichlet]]
+boundary = "zmax"
+components = ["x", "y", "z"]
+value = [0.0, 0.0, 0.0]
+
+[[dirichlet]]
+boundary = "zmin"
+components = ["z"]
+value = [0.15]
+
+[load]
+steps = 2
+
+[newton]
+rtol = 1e-10
+)";
+
+struct BackendRun {
+  std::vector<double> u;
+  std::vector<int> newton_per_step;
+};
+
+std::unique_ptr<scene::Scene> make_scene(const std::string& which) {
+  if (which == "small-block") return scene::build_scene(kSmallBlock, "small-block", ".");
+  return harness::open_scene(which, 0);
+}
+
+BackendRun run(const std::string& scene_name, const std::string& backend) {
+  auto s = make_scene(scene_name);
+  s->newton.rtol = 1e-10;
+  auto solver = solvers::create_solver(backend, PETSC_COMM_WORLD);
+  nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, s->problem, s->newton, *solver);
+  BackendRun r;
+  for (const auto& step : newton.run()) {
+    EXPECT_TRUE(step.converged()) << backend << " step " << step.step << ": " << nonlinear::to_string(step.reason)
+                                  << " " << step.detail;
+    r.newton_per_step.push_back(static_cast<int>(step.iterations.size()));
+  }
+  r.u = newton.displacement();
+  return r;
+}
+
+const BackendRun& reference(const std::string& scene_name) {
+  static std::map<std::string, BackendRun> cache;
+  auto it = cache.find(scene_name);
+  if (it == cache.end()) it = cache.emplace(scene_name, run(scene_name, "lu-mumps")).first;
+  return it->second;
+}
+
+std::vector<std::string> available_backends() {
+  std::vector<std::string> names;
+  for (const auto& b : solvers::backends())
+    if (b.unavailable_reason().empty()) names.push_back(b.name);
+  return names;
+}
+
+class EveryBackend : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
+
+TEST_P(EveryBackend, SameSolutionAsLuMumps) {
+  const auto& [scene_name, backend] = GetParam();
+  const BackendRun& ref = reference(scene_name);
+  const BackendRun r = run(scene_name, backend);
+  ASSERT_EQ(r.newton_per_step.size(), ref.newton_per_step.size());
+  for (size_t k = 0; k < ref.newton_per_step.size(); ++k)
+    EXPECT_LE(std::abs(r.newton_per_step[k] - ref.newton_per_step[k]), 1) << "load step " << k + 1;
+  double diff = 0, norm = 0;
+  for (size_t i = 0; i < ref.u.size(); ++i) {
+    diff += std::pow(r.u[i] - ref.u[i], 2);
+    norm += ref.u[i] * ref.u[i];
+  }
+  EXPECT_LT(std::sqrt(diff / norm), 1e-8);
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, EveryBackend,
+                         ::testing::Combine(::testing::Values("cantilever-2d", "small-block"),
+                                            ::testing::ValuesIn(available_backends())),
+                         [](const auto& info) {
+                           std::string n = std::get<0>(info.param) + "_" + std::get<1>(info.param);
+                           for (char& c : n)
+                             if (c == '-') c = '_';
+                           return n;
+                         });
+
+TEST(Registry, UnknownBackendListsTheValidNames) {
+  try {
+    solvers::create_solver("no-such-solver", PETSC_COMM_WORLD);
+    FAIL() << "no error";
+  } catch (const std::exception& e) {
+    const std::string msg = e.what();
+    for (const auto& b : solvers::backends()) EXPECT_NE(msg.find(b.name), std::string::npos) << msg;
+  }
+}
+
+}  // namespace
+}  // namespace stiction
