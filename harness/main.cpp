@@ -18,6 +18,7 @@
 #include "registry.hpp"
 #include "run_info.hpp"
 #include "scene/scene.hpp"
+#include "replay_command.hpp"
 #include "solve_command.hpp"
 
 using namespace stiction;
@@ -92,6 +93,14 @@ int main(int argc, char** argv) {
   solve_cmd->add_option("--out", solve.out_dir, "output directory (default out/<scene>-L<level>)");
   solve_cmd->add_flag("--quiet", solve.quiet, "no progress on stderr");
   solve_cmd->add_option("--metrics", solve.metrics_path, "write a TOML record of the run (used by `stiction bench`)");
+  solve_cmd->add_option("--record", solve.record_dir, "record every Newton system here (see `stiction replay`)");
+  bool no_vtu = false;
+  solve_cmd->add_flag("--no-vtu", no_vtu, "do not write VTU/PVD output");
+  harness::ReplayOptions replay;
+  auto* replay_cmd = app.add_subcommand("replay", "solve recorded Newton systems with a backend");
+  replay_cmd->add_option("record", replay.record_dir, "folder written by `stiction solve --record`")->required();
+  replay_cmd->add_option("--solver", replay.solver, "linear-solver backend (see `stiction solvers`)");
+  replay_cmd->add_option("--csv", replay.csv_path, "also write the table as CSV");
   bool schema = false;
   auto* scenes_cmd = app.add_subcommand("scenes", "list the built-in scenes");
   scenes_cmd->add_flag("--schema", schema, "print every key a scene file accepts");
@@ -110,7 +119,12 @@ int main(int argc, char** argv) {
     if (*scenes_cmd) list_scenes(schema);
     if (*solvers_cmd) list_solvers();
     if (*solve_cmd) {
+      solve.write_vtu = !no_vtu;
       harness::run_solve(solve, harness::collect_run_info(argc, argv));
+      reject_unused(petsc_given);
+    }
+    if (*replay_cmd) {
+      harness::run_replay(replay, harness::collect_run_info(argc, argv));
       reject_unused(petsc_given);
     }
   } catch (const Error& e) {

@@ -12,6 +12,7 @@
 #include "ksp_solver.hpp"
 #include "registry.hpp"
 #include "run_metrics.hpp"
+#include "system_record.hpp"
 #include "vtu_writer.hpp"
 
 namespace stiction::harness {
@@ -84,9 +85,16 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   if (scene->output.csv) table = std::make_unique<StepTable>(out_dir + "/steps.csv", header, *scene);
   PvdCollection pvd(out_dir + "/solution.pvd");
   nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, scene->problem, scene->newton, *solver);
+  if (!o.record_dir.empty()) {
+    const RecordContext context{scene->name, scene->level, o.solver, info};
+    newton.set_system_observer([&, context](const nonlinear::NewtonSystem& sys, Vec du,
+                                            const nonlinear::LinearSolveStats& stats, int step, int iteration) {
+      record_system(o.record_dir, sys, du, stats, step, iteration, context);
+    });
+  }
   auto results = newton.run([&](const nonlinear::StepResult& r) {
     if (table) table->add(r, *scene);
-    if (scene->output.vtu && r.converged()) {
+    if (scene->output.vtu && o.write_vtu && r.converged()) {
       const std::string name = fmt::format("step-{:03d}.vtu", r.step);
       write_vtu(out_dir + "/" + name, *scene, newton.displacement());
       pvd.add(r.step, name);

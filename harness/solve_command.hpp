@@ -13,6 +13,8 @@ struct SolveOptions {
   std::string solver = "lu-mumps";
   std::string out_dir;           // default out/<scene>-L<level>
   std::string metrics_path;      // TOML record of the run for the sweep harness (optional)
+  std::string record_dir;        // record every Newton system here (optional)
+  bool write_vtu = true;         // --no-vtu turns the scene's VTU output off (sweeps)
   std::string petsc_options;     // the PETSc options given on the command line, for reports
   bool quiet = false;
 };

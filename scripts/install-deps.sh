@@ -16,6 +16,7 @@ packages=(
   libcli11-dev
   libfmt-dev
   libboost-dev
+  nlohmann-json3-dev        # record/replay metadata
 )
 
 missing=()

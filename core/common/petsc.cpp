@@ -21,6 +21,9 @@ PetscSession::PetscSession(int* argc, char*** argv) {
   if (initialised) return;
   STICTION_PETSC(PetscInitialize(argc, argv, nullptr, nullptr));
   PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+  // Default signal behaviour: a closed pipe (stiction replay ... | head) ends the process
+  // quietly instead of a PETSc crash report and MPI_Abort.
+  PetscPopSignalHandler();
 }
 
 PetscSession::~PetscSession() {

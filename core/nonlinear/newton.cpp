@@ -267,6 +267,7 @@ StepResult QuasiStaticSolver::solve_step(int step) {
 
     linear_.setup(system_);
     rec.linear = linear_.solve(system_, du);
+    if (observer_) observer_(system_, du, rec.linear, step, it + 1);
     if (!rec.linear.converged) {
       res.iterations.push_back(rec);
       res.detail = fmt::format("linear solver {} stopped with {}", linear_.name(), rec.linear.reason);

@@ -79,6 +79,11 @@ public:
   fem::InternalForceStatus residual(int step, const std::vector<double>& u, std::vector<double>& r) const;
   // The last assembled Newton system (for record/replay and tests).
   const NewtonSystem& system() const { return system_; }
+  // Called after every linear solve with the system, the increment found and its figures
+  // (record/replay hooks in here).
+  using SystemObserver =
+      std::function<void(const NewtonSystem&, Vec increment, const LinearSolveStats&, int step, int iteration)>;
+  void set_system_observer(SystemObserver observer) { observer_ = std::move(observer); }
 
 private:
   void build_constraints();
@@ -97,6 +102,7 @@ private:
   std::vector<char> is_constrained_;          // per dof
   std::vector<std::vector<int>> bc_nodes_;    // per Dirichlet condition
   std::vector<double> target_;                // prescribed values, per constrained dof (this step)
+  SystemObserver observer_;
 };
 
 // Rigid-body modes of the space (translations, rotations about the origin) interpolated in

@@ -270,3 +270,19 @@ TEST_F(StictionCli, ValidRunWritesOutput) {
 }
 
 }  // namespace
+
+TEST_F(StictionCli, UnreadableRecordIsAnError) {
+  expect_error(CliRun::of({"replay", (dir_ / "no-such-record").string()}, dir_), 2, {"no-such-record", "not a directory"});
+  fs::create_directories(dir_ / "record" / "system-001-01");
+  expect_error(CliRun::of({"replay", (dir_ / "record").string()}, dir_), 2, {"unreadable record", "metadata.json"});
+}
+
+TEST_F(StictionCli, RecordThenReplayWithAnotherBackend) {
+  const CliRun rec = solve("cantilever-2d", {"--record", (dir_ / "rec").string(), "--no-vtu"});
+  ASSERT_EQ(rec.exit_code, 0) << rec.err;
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "step-001.vtu"));
+  const CliRun rep = CliRun::of({"replay", (dir_ / "rec").string(), "--solver", "schur-lu", "--csv",
+                                 (dir_ / "replay.csv").string()}, dir_);
+  EXPECT_EQ(rep.exit_code, 0) << rep.err;
+  EXPECT_TRUE(fs::exists(dir_ / "replay.csv"));
+}

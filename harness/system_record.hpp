@@ -1,0 +1,39 @@
+#pragma once
+// Record and replay of Newton systems, so backends can be compared on exactly the same
+// matrices. One folder per system (system-<step>-<iteration>/):
+//   system.petsc   PETSc binary: matrix, right side, recorded solution, one IS per field,
+//                  the near-null-space vectors (in that order)
+//   metadata.json  scene, level, solver, step, iteration, unknowns, block size, field
+//                  names and sizes, number of near-null vectors, the recording solve's
+//                  statistics, PETSc version, git revision
+#include <string>
+#include <vector>
+
+#include "nonlinear/linear_solver.hpp"
+#include "nonlinear/newton_system.hpp"
+#include "run_info.hpp"
+
+namespace stiction::harness {
+
+struct RecordContext {
+  std::string scene;
+  int level = 0;
+  std::string solver;
+  RunInfo info;
+};
+
+void record_system(const std::string& dir, const nonlinear::NewtonSystem& system, Vec solution,
+                   const nonlinear::LinearSolveStats& stats, int step, int iteration, const RecordContext& context);
+
+struct RecordedSystem {
+  std::string path;        // the system's folder
+  std::string description; // scene, level, step, iteration
+  nonlinear::NewtonSystem system;
+  PetscVec solution;       // recorded solution
+};
+
+// The systems under `dir`, in (step, iteration) order; throws on a missing or unreadable record.
+std::vector<std::string> recorded_system_dirs(const std::string& dir);
+RecordedSystem load_system(const std::string& system_dir, MPI_Comm comm);
+
+}  // namespace stiction::harness
