@@ -12,6 +12,8 @@
 #include <cctype>
 #include <set>
 
+#include "bench_command.hpp"
+#include "bench_report.hpp"
 #include "builtin_scenes.hpp"
 #include "common/error.hpp"
 #include "common/petsc.hpp"
@@ -68,16 +70,19 @@ void reject_unused(const std::set<std::string>& given) {
 int main(int argc, char** argv) {
   std::vector<char*> cli_argv{argv[0]}, petsc_argv{argv[0]};
   std::set<std::string> petsc_given;
+  std::vector<std::string> petsc_pairs;  // "-key value", as given
   harness::SolveOptions solve;
   for (int i = 1; i < argc; ++i) {
     if (is_petsc_option(argv[i])) {
       petsc_argv.push_back(argv[i]);
       petsc_given.insert(argv[i]);
-      solve.petsc_options += std::string(argv[i]) + "\n";
+      std::string pair = argv[i];
       if (i + 1 < argc && looks_like_value(argv[i + 1])) {
         petsc_argv.push_back(argv[++i]);
-        solve.petsc_options.insert(solve.petsc_options.size() - 1, std::string(" ") + argv[i]);
+        pair += std::string(" ") + argv[i];
       }
+      solve.petsc_options += pair + "\n";
+      petsc_pairs.push_back(pair);
     } else {
       cli_argv.push_back(argv[i]);
     }
@@ -106,10 +111,39 @@ int main(int argc, char** argv) {
   scenes_cmd->add_flag("--schema", schema, "print every key a scene file accepts");
   auto* solvers_cmd = app.add_subcommand("solvers", "list the linear-solver backends");
 
+  harness::BenchOptions bench;
+  auto* bench_cmd = app.add_subcommand("bench", "sweep scenes x solvers x mesh levels, each run in its own process");
+  bench_cmd->add_option("--scenes", bench.scenes, "scenes (comma separated; default: every built-in)")->delimiter(',');
+  bench_cmd->add_option("--solvers", bench.solvers, "backends (comma separated; default: every backend)")->delimiter(',');
+  bench_cmd->add_option("--levels", bench.levels, "mesh levels (comma separated; default 0)")->delimiter(',');
+  bench_cmd->add_option("--out", bench.out_dir, "output directory (runs.csv, steps.csv, report.md, runs/)");
+  bench_cmd->add_flag("--resume", bench.resume, "continue a sweep: skip the runs already in runs.csv");
+  bench_cmd->add_option("--time-limit", bench.time_limit_seconds, "wall-time limit per run, seconds (default 3600)");
+  bench_cmd->add_option("--memory-limit-mb", bench.memory_limit_mb, "resident-memory limit per run (default 90% of RAM)");
+  std::string report_dir;
+  auto* report_cmd = app.add_subcommand("report", "rebuild report.md of a sweep from its CSV files");
+  report_cmd->add_option("dir", report_dir, "the sweep's output directory")->required();
+
   try {
     app.parse(static_cast<int>(cli_argv.size()), cli_argv.data());
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : static_cast<int>(ErrorKind::Input);
+  }
+
+  // The sweep and the report start no PETSc: each run is its own `stiction solve` process.
+  try {
+    if (*bench_cmd) {
+      bench.petsc_options = petsc_pairs;
+      harness::run_bench(bench, harness::collect_run_info(argc, argv));
+      return 0;
+    }
+    if (*report_cmd) {
+      harness::write_bench_report(report_dir);
+      return 0;
+    }
+  } catch (const Error& e) {
+    fmt::print(stderr, "stiction: error: {}\n", e.what());
+    return static_cast<int>(e.kind());
   }
 
   int petsc_argc = static_cast<int>(petsc_argv.size());

@@ -1,0 +1,212 @@
+#include "bench_command.hpp"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "bench_report.hpp"
+#include "builtin_scenes.hpp"
+#include "child_process.hpp"
+#include "common/error.hpp"
+#include "csv_table.hpp"
+#include "ksp_solver.hpp"
+#include "registry.hpp"
+
+namespace stiction::harness {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* kRunColumns =
+    "scene,level,solver,status,converged,reason,unknowns,unknowns_u_l,unknowns_u_q,load_steps,"
+    "load_steps_completed,newton_iterations,linear_solves,krylov_iterations,krylov_per_linear_solve,wall_seconds,"
+    "assembly_seconds,setup_seconds,solve_seconds,seconds_per_linear_solve,peak_rss_mb,mumps_memory_mb,"
+    "amg_operator_complexity,detail";
+const char* kStepColumns =
+    "scene,level,solver,step,newton_iteration,converged,reason,krylov_iterations,initial_residual,final_residual,"
+    "assembly_seconds,setup_seconds,solve_seconds";
+
+struct Run {
+  std::string scene, solver;
+  int level;
+  std::string key() const { return fmt::format("{}|{}|{}", scene, level, solver); }
+  std::string id() const { return fmt::format("{}-L{}-{}", fs::path(scene).stem().string(), level, solver); }
+};
+
+std::string last_line(const std::string& path) {
+  std::ifstream in(path);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  return last;
+}
+
+int count_data_lines(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  int n = -1;  // the header
+  while (std::getline(in, line))
+    if (!line.empty() && line[0] != '#') ++n;
+  return std::max(n, 0);
+}
+
+// Status of a finished child, from how it ended.
+std::string status_of(const ChildResult& c, bool have_metrics) {
+  if (c.hit_memory_limit) return "memory-limit";
+  if (c.hit_time_limit) return "time-limit";
+  if (c.signal) return c.signal == 9 ? "killed (signal 9; out of memory?)" : fmt::format("killed (signal {})", c.signal);
+  if (c.exit_code == 0 && have_metrics) return "ok";
+  if (c.exit_code == 3 && have_metrics) return "newton-failed";
+  return "error";
+}
+
+void write_rows(const std::string& out, const Run& run, const ChildResult& child, const std::string& run_dir) {
+  const std::string metrics_path = run_dir + "/metrics.toml";
+  toml::table metrics;
+  bool have_metrics = fs::exists(metrics_path);
+  if (have_metrics) {
+    try {
+      metrics = toml::parse_file(metrics_path);
+    } catch (const toml::parse_error&) {
+      have_metrics = false;
+    }
+  }
+  const std::string status = status_of(child, have_metrics);
+  const toml::table empty;
+  const toml::table& m = have_metrics && metrics["run"].as_table() ? *metrics["run"].as_table() : empty;
+  auto num = [&](const char* k) { return m[k].value<double>().value_or(0.0); };
+  double mumps = 0, complexity = 0;
+  int n_complexity = 0;
+  std::string steps;
+  if (const auto* solves = metrics["linear_solve"].as_array()) {
+    for (const auto& node : *solves) {
+      const auto& s = *node.as_table();
+      mumps = std::max({mumps, s["mumps_memory_MB"].value<double>().value_or(0.0),
+                        s["ll_mumps_memory_MB"].value<double>().value_or(0.0)});
+      if (auto c = s["amg_operator_complexity"].value<double>()) complexity += *c, ++n_complexity;
+      steps += fmt::format("{},{},{},{},{},{},{},{},{:.6e},{:.6e},{:.4f},{:.4f},{:.4f}\n", run.scene, run.level,
+                           run.solver, s["step"].value<int64_t>().value_or(0),
+                           s["newton_iteration"].value<int64_t>().value_or(0),
+                           s["converged"].value<bool>().value_or(false) ? 1 : 0,
+                           s["reason"].value<std::string>().value_or(""),
+                           s["krylov_iterations"].value<int64_t>().value_or(0),
+                           s["initial_residual"].value<double>().value_or(0), s["final_residual"].value<double>().value_or(0),
+                           s["assembly_seconds"].value<double>().value_or(0), s["setup_seconds"].value<double>().value_or(0),
+                           s["solve_seconds"].value<double>().value_or(0));
+    }
+  }
+  const double solves = num("linear_solves");
+  std::string detail = m["detail"].value<std::string>().value_or("");
+  if (status != "ok" && status != "newton-failed") detail = last_line(run_dir + "/stderr.txt");
+  if (child.hit_time_limit) detail = fmt::format("stopped after {:.0f} s", child.wall_seconds);
+  const std::string row = fmt::format(
+      "{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.2f},{:.3f},{:.3f},{:.3f},{:.3f},{:.4f},"
+      "{:.1f},{:.0f},{:.3f},{}",
+      run.scene, run.level, run.solver, status, m["converged"].value<bool>().value_or(false) ? 1 : 0,
+      csv_field(m["reason"].value<std::string>().value_or(status)), num("unknowns"), num("unknowns_u_l"),
+      num("unknowns_u_q"), num("load_steps"), num("load_steps_completed"), num("newton_iterations"), solves,
+      num("krylov_iterations"), solves > 0 ? num("krylov_iterations") / solves : 0.0, child.wall_seconds,
+      num("assembly_seconds"), num("setup_seconds"), num("solve_seconds"),
+      solves > 0 ? (num("setup_seconds") + num("solve_seconds")) / solves : 0.0, child.peak_rss_mb, mumps,
+      n_complexity ? complexity / n_complexity : 0.0, csv_field(detail));
+  if (!steps.empty()) append_durably(out + "/steps.csv", steps);
+  append_durably(out + "/runs.csv", row);
+}
+
+}  // namespace
+
+void run_bench(const BenchOptions& o, const RunInfo& info) {
+  std::vector<std::string> scenes = o.scenes, solvers_list = o.solvers;
+  if (scenes.empty())
+    for (const auto& [name, text] : builtin_scenes()) scenes.push_back(name);
+  if (solvers_list.empty())
+    for (const auto& b : solvers::backends()) solvers_list.push_back(b.name);
+  for (const auto& s : scenes)
+    if (!builtin_scenes().count(s) && !fs::is_regular_file(s))
+      throw Error(fmt::format("scene '{}' is neither a file nor a built-in scene", s));
+  std::set<std::string> known;
+  for (const auto& b : solvers::backends()) known.insert(b.name);
+  for (const auto& s : solvers_list)
+    if (!known.count(s)) throw Error(fmt::format("unknown solver backend '{}' (valid: {})", s, solvers::backend_names()));
+  for (int l : o.levels)
+    if (l < 0 || l > 4) throw Error(fmt::format("mesh level {} outside 0..4", l));
+  // PETSc options go to the children whose prefix they carry; one that matches no backend
+  // of the sweep would be silently ignored, so it is an error.
+  for (size_t k = 0; k < o.petsc_options.size(); ++k) {
+    const std::string& opt = o.petsc_options[k];
+    bool matches = false;
+    for (const auto& s : solvers_list) matches |= opt.rfind("-" + solvers::options_prefix(s), 0) == 0;
+    if (!matches) throw Error(fmt::format("PETSc option '{}' matches none of the backends of this sweep", opt));
+  }
+
+  const std::string out = o.out_dir;
+  std::error_code ec;
+  fs::create_directories(fs::path(out) / "runs", ec);
+  if (ec) throw Error(fmt::format("cannot create '{}': {}", out, ec.message()));
+  const std::string runs_csv = out + "/runs.csv";
+  std::set<std::string> done;
+  if (fs::exists(runs_csv)) {
+    if (!o.resume) throw Error(fmt::format("'{}' exists: pass --resume to continue that sweep or choose another --out", runs_csv));
+    for (const auto& row : read_csv(runs_csv).rows) done.insert(fmt::format("{}|{}|{}", row.at("scene"), row.at("level"), row.at("solver")));
+    append_durably(runs_csv, "# resumed: " + info.command_line + " at " + info.date + ", git " + info.git_revision);
+  } else {
+    std::string header = format_run_info(info, "# ");
+    const double limit_mb = o.memory_limit_mb > 0 ? o.memory_limit_mb : 0.9 * physical_memory_mb();
+    header += fmt::format("# limits per run: {:.0f} s, {:.0f} MB resident\n", o.time_limit_seconds, limit_mb);
+    for (const auto& opt : o.petsc_options) header += "# petsc option: " + opt + "\n";
+    append_durably(runs_csv, header + kRunColumns);
+    append_durably(out + "/steps.csv", format_run_info(info, "# ") + kStepColumns);
+  }
+
+  std::vector<Run> runs;
+  for (int level : o.levels)
+    for (const auto& scene : scenes)
+      for (const auto& solver : solvers_list) runs.push_back({scene, solver, level});
+  const std::string exe = self_executable();
+  ChildLimits limits{o.time_limit_seconds, o.memory_limit_mb > 0 ? o.memory_limit_mb : 0.9 * physical_memory_mb()};
+  int index = 0;
+  for (const Run& run : runs) {
+    ++index;
+    if (done.count(run.key())) {
+      fmt::print(stderr, "bench [{}/{}] {} {} L{}: already in runs.csv, skipped\n", index, runs.size(), run.scene,
+                 run.solver, run.level);
+      continue;
+    }
+    const std::string run_dir = (fs::path(out) / "runs" / run.id()).string();
+    fs::remove_all(run_dir, ec);
+    fs::create_directories(run_dir, ec);
+    std::vector<std::string> argv{exe, "solve", run.scene, "--level", std::to_string(run.level), "--solver", run.solver,
+                                  "--out", run_dir, "--quiet", "--no-vtu", "--metrics", run_dir + "/metrics.toml"};
+    for (size_t k = 0; k < o.petsc_options.size(); ++k)
+      if (o.petsc_options[k].rfind("-" + solvers::options_prefix(run.solver), 0) == 0) {
+        std::istringstream words(o.petsc_options[k]);
+        std::string w;
+        while (words >> w) argv.push_back(w);
+      }
+    int last_step = -1;
+    double last_print = -1e9;
+    const ChildResult child = run_child(argv, run_dir + "/stdout.txt", run_dir + "/stderr.txt", limits, [&](double t) {
+      const int step = count_data_lines(run_dir + "/steps.csv");
+      if (step != last_step || t - last_print > 30) {
+        fmt::print(stderr, "bench [{}/{}] {} {} L{}: {} load steps done, {:.0f} s\n", index, runs.size(), run.scene,
+                   run.solver, run.level, step, t);
+        last_step = step;
+        last_print = t;
+      }
+    });
+    write_rows(out, run, child, run_dir);
+    fmt::print(stderr, "bench [{}/{}] {} {} L{}: {} in {:.1f} s, peak {:.0f} MB\n", index, runs.size(), run.scene,
+               run.solver, run.level, status_of(child, fs::exists(run_dir + "/metrics.toml")), child.wall_seconds,
+               child.peak_rss_mb);
+    write_bench_report(out);
+  }
+  write_bench_report(out);
+}
+
+}  // namespace stiction::harness

@@ -1,0 +1,27 @@
+#pragma once
+// `stiction bench`: the sweep scene x solver x mesh level. Each run is a child
+// `stiction solve ... --metrics` with a time and memory limit; its figures become a row of
+// runs.csv (one per run) and rows of steps.csv (one per linear solve), each written and
+// synced at once; report.md is rebuilt from the CSVs after every run (`stiction report`
+// rebuilds it alone). --resume skips the runs already in runs.csv.
+#include <string>
+#include <vector>
+
+#include "run_info.hpp"
+
+namespace stiction::harness {
+
+struct BenchOptions {
+  std::vector<std::string> scenes;   // empty: every built-in scene
+  std::vector<std::string> solvers;  // empty: every registered backend
+  std::vector<int> levels{0};
+  std::string out_dir = "reports/bench";
+  bool resume = false;
+  double time_limit_seconds = 3600;
+  double memory_limit_mb = 0;        // 0: 90% of the machine's memory
+  std::vector<std::string> petsc_options;  // "-prefix_key value" pairs, forwarded by prefix
+};
+
+void run_bench(const BenchOptions& options, const RunInfo& info);
+
+}  // namespace stiction::harness

@@ -1,0 +1,37 @@
+#pragma once
+// Runs one command in a child process with a wall-time and a resident-memory limit, so
+// each (scene, solver, level) of a sweep has its own peak memory and a run that is killed
+// or runs out of memory becomes a row instead of ending the sweep.
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace stiction::harness {
+
+struct ChildLimits {
+  double seconds = 3600;
+  double memory_mb = 0;  // resident set; 0 = no limit
+};
+
+struct ChildResult {
+  int exit_code = -1;        // -1 when ended by a signal
+  int signal = 0;
+  bool hit_time_limit = false;
+  bool hit_memory_limit = false;
+  double wall_seconds = 0;
+  double peak_rss_mb = 0;    // from wait4's rusage: the child's own peak
+};
+
+// argv[0] is the program path. stdout/stderr go to the given files. on_tick(elapsed) is
+// called about twice a second while the child runs. MPI launcher variables are removed
+// from the child's environment so it starts as a singleton.
+ChildResult run_child(const std::vector<std::string>& argv, const std::string& stdout_path,
+                      const std::string& stderr_path, const ChildLimits& limits,
+                      const std::function<void(double)>& on_tick = {});
+
+// Path of the running executable (/proc/self/exe).
+std::string self_executable();
+// Physical memory of the machine in MB.
+double physical_memory_mb();
+
+}  // namespace stiction::harness
