@@ -104,6 +104,12 @@ nonlinear::LinearSolveStats KspSolver::solve(const nonlinear::NewtonSystem& syst
   return s;
 }
 
+void KspSolver::apply_preconditioner(Vec in, Vec out) const {
+  PC pc;
+  STICTION_PETSC(KSPGetPC(ksp_, &pc));
+  STICTION_PETSC(PCApply(pc, in, out));
+}
+
 std::string KspSolver::describe() const {
   std::string text = full_view(ksp_);
   if (!setup_output_.empty()) text += "\nSet-up statistics printed by the solver:\n" + setup_output_;

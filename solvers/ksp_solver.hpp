@@ -22,6 +22,7 @@ public:
   void setup(const nonlinear::NewtonSystem& system) override;
   nonlinear::LinearSolveStats solve(const nonlinear::NewtonSystem& system, Vec x) override;
   std::string describe() const override;
+  void apply_preconditioner(Vec in, Vec out) const override;
 
 protected:
   // Backend figures after set-up (factorisation memory, AMG complexity, ...);

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Rewrites tests/regression/iterations.csv from a fresh level-0 sweep of every built-in
+# scene and backend. Run it on purpose (a change that lowers counts, a new scene or
+# backend), review the diff, and commit it with the reason in the message.
+set -euo pipefail
+build=${1:-build}
+export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+"$build/stiction" bench --levels 0 --out "$tmp/sweep" >&2
+out=tests/regression/iterations.csv
+{
+  echo "# Newton and total Krylov iterations per (scene, backend) at mesh level 0, guarded by"
+  echo "# tests/regression/test_iteration_baseline.cpp. Made by scripts/update-iteration-baseline.sh"
+  echo "# at git $(git rev-parse --short=12 HEAD) on $(date -u '+%Y-%m-%d')."
+  echo "scene,solver,newton_iterations,krylov_iterations"
+  awk -F, '!/^#/ && $1 != "scene" && $4 == "ok" { print $1 "," $3 "," $12 "," $14 }' "$tmp/sweep/runs.csv"
+} > "$out"
+echo "wrote $out" >&2
