@@ -27,7 +27,7 @@ const char* kRunColumns =
     "scene,level,solver,status,converged,reason,unknowns,unknowns_u_l,unknowns_u_q,load_steps,"
     "load_steps_completed,newton_iterations,linear_solves,krylov_iterations,krylov_per_linear_solve,wall_seconds,"
     "assembly_seconds,setup_seconds,solve_seconds,seconds_per_linear_solve,peak_rss_mb,mumps_memory_mb,"
-    "amg_operator_complexity,detail";
+    "amg_operator_complexity,krylov_rtol,detail";
 const char* kStepColumns =
     "scene,level,solver,step,newton_iteration,converged,reason,krylov_iterations,initial_residual,final_residual,"
     "assembly_seconds,setup_seconds,solve_seconds";
@@ -81,7 +81,7 @@ void write_rows(const std::string& out, const Run& run, const ChildResult& child
   const toml::table empty;
   const toml::table& m = have_metrics && metrics["run"].as_table() ? *metrics["run"].as_table() : empty;
   auto num = [&](const char* k) { return m[k].value<double>().value_or(0.0); };
-  double mumps = 0, complexity = 0;
+  double mumps = 0, complexity = 0, krylov_rtol = 0;
   int n_complexity = 0;
   std::string steps;
   if (const auto* solves = metrics["linear_solve"].as_array()) {
@@ -90,6 +90,7 @@ void write_rows(const std::string& out, const Run& run, const ChildResult& child
       mumps = std::max({mumps, s["mumps_memory_MB"].value<double>().value_or(0.0),
                         s["ll_mumps_memory_MB"].value<double>().value_or(0.0)});
       if (auto c = s["amg_operator_complexity"].value<double>()) complexity += *c, ++n_complexity;
+      krylov_rtol = s["ksp_rtol"].value<double>().value_or(krylov_rtol);
       steps += fmt::format("{},{},{},{},{},{},{},{},{:.6e},{:.6e},{:.4f},{:.4f},{:.4f}\n", run.scene, run.level,
                            run.solver, s["step"].value<int64_t>().value_or(0),
                            s["newton_iteration"].value<int64_t>().value_or(0),
@@ -107,14 +108,15 @@ void write_rows(const std::string& out, const Run& run, const ChildResult& child
   if (child.hit_time_limit) detail = fmt::format("stopped after {:.0f} s", child.wall_seconds);
   const std::string row = fmt::format(
       "{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.2f},{:.3f},{:.3f},{:.3f},{:.3f},{:.4f},"
-      "{:.1f},{:.0f},{:.3f},{}",
+      "{:.1f},{:.0f},{:.3f},{},{}",
       run.scene, run.level, run.solver, status, m["converged"].value<bool>().value_or(false) ? 1 : 0,
       csv_field(m["reason"].value<std::string>().value_or(status)), num("unknowns"), num("unknowns_u_l"),
       num("unknowns_u_q"), num("load_steps"), num("load_steps_completed"), num("newton_iterations"), solves,
       num("krylov_iterations"), solves > 0 ? num("krylov_iterations") / solves : 0.0, child.wall_seconds,
       num("assembly_seconds"), num("setup_seconds"), num("solve_seconds"),
       solves > 0 ? (num("setup_seconds") + num("solve_seconds")) / solves : 0.0, child.peak_rss_mb, mumps,
-      n_complexity ? complexity / n_complexity : 0.0, csv_field(detail));
+      n_complexity ? complexity / n_complexity : 0.0, krylov_rtol > 0 ? fmt::format("{:g}", krylov_rtol) : "",
+      csv_field(detail));
   if (!steps.empty()) append_durably(out + "/steps.csv", steps);
   append_durably(out + "/runs.csv", row);
 }
@@ -159,9 +161,11 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
     std::string header = format_run_info(info, "# ");
     const double limit_mb = o.memory_limit_mb > 0 ? o.memory_limit_mb : 0.9 * physical_memory_mb();
     header += fmt::format("# limits per run: {:.0f} s, {:.0f} MB resident\n", o.time_limit_seconds, limit_mb);
+    for (const auto& s : solvers_list)
+      header += fmt::format("# backend {} options: {}\n", s, solvers::compact_options(s));
     for (const auto& opt : o.petsc_options) header += "# petsc option: " + opt + "\n";
     append_durably(runs_csv, header + kRunColumns);
-    append_durably(out + "/steps.csv", format_run_info(info, "# ") + kStepColumns);
+    append_durably(out + "/steps.csv", header + kStepColumns);
   }
 
   std::vector<Run> runs;

@@ -73,7 +73,9 @@ ChildResult run_child(const std::vector<std::string>& argv, const std::string& s
     const int err = open(stderr_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (out >= 0) dup2(out, STDOUT_FILENO);
     if (err >= 0) dup2(err, STDERR_FILENO);
-    execve(args[0], args.data(), env.data());
+    // /proc/self/exe is this very executable even if the file on disk has been replaced
+    // meanwhile (a rebuild during a long sweep), so every run of a sweep uses one binary.
+    execve("/proc/self/exe", args.data(), env.data());
     _exit(127);
   }
 

@@ -22,7 +22,7 @@ struct ChildResult {
   double peak_rss_mb = 0;    // from wait4's rusage: the child's own peak
 };
 
-// argv[0] is the program path. stdout/stderr go to the given files. on_tick(elapsed) is
+// Runs this same executable (/proc/self/exe) with argv; argv[0] is only its display name. stdout/stderr go to the given files. on_tick(elapsed) is
 // called about twice a second while the child runs. MPI launcher variables are removed
 // from the child's environment so it starts as a singleton.
 ChildResult run_child(const std::vector<std::string>& argv, const std::string& stdout_path,

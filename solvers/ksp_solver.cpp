@@ -23,6 +23,17 @@ std::string options_prefix(const std::string& name) {
   return p + "_";
 }
 
+std::string compact_options(const std::string& name) {
+  std::istringstream lines(default_options(name));
+  std::string line, out;
+  while (std::getline(lines, line)) {
+    line = line.substr(0, line.find('#'));
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    if (!line.empty()) out += (out.empty() ? "" : " ") + line;
+  }
+  return out;
+}
+
 std::string default_options(const std::string& name) {
   const auto& all = embedded_options();
   auto it = all.find(name);
@@ -74,6 +85,16 @@ void KspSolver::setup(const nonlinear::NewtonSystem& system) {
   if (capture) setup_output_ = capture->text();
   setup_seconds_ = seconds_since(t0);
   setup_extra_.clear();
+  // The Krylov tolerance is the inexact-Newton forcing term: report it with every solve.
+  KSPType type;
+  STICTION_PETSC(KSPGetType(ksp_, &type));
+  if (std::string(type) != KSPPREONLY) {
+    PetscReal rtol, abstol, dtol;
+    PetscInt max_it;
+    STICTION_PETSC(KSPGetTolerances(ksp_, &rtol, &abstol, &dtol, &max_it));
+    setup_extra_["ksp_rtol"] = rtol;
+    setup_extra_["ksp_max_it"] = static_cast<double>(max_it);
+  }
   collect_setup_figures(setup_extra_);
 }
 

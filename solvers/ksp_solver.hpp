@@ -14,6 +14,8 @@ namespace stiction::solvers {
 std::string options_prefix(const std::string& backend_name);
 // The embedded default options of a backend (empty if it has none).
 std::string default_options(const std::string& backend_name);
+// The same on one line, without comments ("-ksp_type gmres -pc_type shell ...").
+std::string compact_options(const std::string& backend_name);
 
 class KspSolver : public nonlinear::LinearSolver {
 public:
