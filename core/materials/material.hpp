@@ -31,6 +31,12 @@ public:
   virtual Mat3 cauchy(const Mat3& F) const { return first_piola(F) * F.transpose() / F.determinant(); }
   // True when the law is only valid for det F > 0 (finite strain).
   virtual bool requires_positive_jacobian() const { return true; }
+  // Nearly incompressible laws solved in mixed displacement-pressure form (paper (2)-(5))
+  // return their bulk modulus kappa > 0 here; energy, stress and tangent then describe
+  // the isochoric part only, and the assembly adds -p J F^-T and the pressure equation.
+  virtual double mixed_bulk_modulus() const { return 0; }
+  // alpha of MHP (11): the pressure Schur complement is approximated by alpha M_p.
+  virtual double pressure_schur_scale() const { return 0; }
 };
 
 // Small-strain linear elasticity: P = lambda tr(eps) I + 2 mu eps, eps = sym(F - I).
@@ -63,6 +69,28 @@ public:
 
 private:
   double E_, nu_, lambda_, mu_;
+};
+
+// Mooney-Rivlin (paper Sec. 2.2, paper-notes 1):
+//   Psi = mu10 I3^(-1/3) I1 + mu01 I3^(-2/3) I2 [+ kappa/2 (J - 1)^2]
+// Mixed form (the paper's): the bracket is replaced by the pressure p = -kappa (J - 1), an
+// unknown of its own, and this class returns the isochoric part only. Displacement form:
+// the bracket is included (locks as kappa/mu10 grows; kept for comparisons).
+class MooneyRivlin final : public Material {
+public:
+  enum class Form { Mixed, Displacement };
+  MooneyRivlin(double mu10, double mu01, double kappa, Form form);
+  std::string name() const override { return form_ == Form::Mixed ? "mooney-rivlin" : "mooney-rivlin-displacement"; }
+  std::string describe() const override;
+  double energy(const Mat3& F) const override;
+  Mat3 first_piola(const Mat3& F) const override;
+  void first_piola_and_tangent(const Mat3& F, Mat3& P, Tangent& A) const override;
+  double mixed_bulk_modulus() const override { return form_ == Form::Mixed ? kappa_ : 0.0; }
+  double pressure_schur_scale() const override { return -(1 / mu10_ + 1 / kappa_); }  // (11)
+
+private:
+  double mu10_, mu01_, kappa_;
+  Form form_;
 };
 
 // Lame parameters from Young's modulus and Poisson's ratio; throws on E <= 0 or

@@ -18,6 +18,9 @@ Mat3 sample_deformation(double scale) {
 
 std::unique_ptr<Material> make(const std::string& name) {
   if (name == "linear") return std::make_unique<LinearElastic>(200.0, 0.3);
+  if (name == "mooney-rivlin") return std::make_unique<MooneyRivlin>(1.0, 0.1, 100.0, MooneyRivlin::Form::Mixed);
+  if (name == "mooney-rivlin-displacement")
+    return std::make_unique<MooneyRivlin>(1.0, 0.1, 100.0, MooneyRivlin::Form::Displacement);
   return std::make_unique<NeoHookean>(200.0, 0.3);
 }
 
@@ -63,7 +66,14 @@ TEST_P(MaterialLaw, StressFreeAtIdentity) {
   EXPECT_LT(make(GetParam())->first_piola(Mat3::Identity()).norm(), 1e-13);
 }
 
-INSTANTIATE_TEST_SUITE_P(Laws, MaterialLaw, ::testing::Values("linear", "neo-hookean"));
+INSTANTIATE_TEST_SUITE_P(Laws, MaterialLaw,
+                         ::testing::Values("linear", "neo-hookean", "mooney-rivlin", "mooney-rivlin-displacement"),
+                         [](const auto& info) {
+                           std::string n = info.param;
+                           for (char& c : n)
+                             if (c == '-') c = '_';
+                           return n;
+                         });
 
 TEST(NeoHookean, MatchesLinearElasticityAtSmallStrain) {
   const NeoHookean nh(200.0, 0.3);
@@ -84,6 +94,15 @@ TEST(NeoHookean, MatchesLinearElasticityAtSmallStrain) {
 TEST(NeoHookean, CauchyStressIsSymmetric) {
   const Mat3 s = NeoHookean(200.0, 0.3).cauchy(sample_deformation(3.0));
   EXPECT_LT((s - s.transpose()).norm(), 1e-12 * s.norm());
+}
+
+// The isochoric Mooney-Rivlin stress is deviatoric in the Cauchy sense: tr(sigma') = 0,
+// so the pressure unknown carries all of the hydrostatic stress.
+TEST(MooneyRivlin, IsochoricCauchyStressIsTraceFree) {
+  const MooneyRivlin mr(1.0, 0.1, 100.0, MooneyRivlin::Form::Mixed);
+  const Mat3 s = mr.cauchy(sample_deformation(3.0));
+  EXPECT_LT(std::abs(s.trace()), 1e-12 * s.norm());
+  EXPECT_GT(s.norm(), 0.1);
 }
 
 TEST(Materials, RejectInvalidParameters) {
