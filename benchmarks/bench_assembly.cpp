@@ -44,7 +44,7 @@ scene::Scene& block(int level) {
   return *s;
 }
 
-std::vector<double> compressed_state(const fem::DisplacementSpace& space) {
+std::vector<double> compressed_state(const fem::FieldSpace& space) {
   std::vector<double> u;  // 2% homogeneous compression along z: F = diag(1, 1, 0.98)
   space.interpolate([&](const double* X, double* out) { out[0] = 0, out[1] = 0, out[2] = -0.02 * X[2]; }, u);
   return u;

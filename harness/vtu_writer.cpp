@@ -16,7 +16,7 @@ double von_mises(const double* s) {
 }
 
 void write_vtu(const std::string& path, const scene::Scene& scene, const std::vector<double>& u) {
-  const fem::DisplacementSpace& space = *scene.space;
+  const fem::FieldSpace& space = *scene.space;
   const int d = space.dim(), nn = space.n_nodes(), nc = scene.mesh.n_cells(), npc = space.nodes_per_cell();
   const std::vector<double> nodal = space.nodal_values(u);
   const std::vector<double> stress = fem::cell_cauchy_stress(space, scene.problem.cell_material, u);
@@ -49,6 +49,10 @@ void write_vtu(const std::string& path, const scene::Scene& scene, const std::ve
     for (int n = 0; n < nn; ++n) {
       const double* v = &nodal[static_cast<size_t>(n) * d];
       out.print("{:.12g} {:.12g} {:.12g}\n", v[0], v[1], d == 3 ? v[2] : 0.0);
+    }
+    if (space.has_pressure()) {
+      out.print("</DataArray>\n<DataArray type=\"Float64\" Name=\"pressure\" format=\"ascii\">\n");
+      for (double p : space.nodal_pressure(u)) out.print("{:.12g}\n", p);
     }
     out.print("</DataArray>\n</PointData>\n<CellData>\n"
               "<DataArray type=\"Float64\" Name=\"cauchy_stress\" NumberOfComponents=\"9\" format=\"ascii\">\n");

@@ -11,7 +11,7 @@ namespace stiction::harness {
 // Von Mises stress of a 3x3 Cauchy stress (row-major).
 double von_mises(const double* sigma);
 
-// Writes displacement (point data) and Cauchy stress, von Mises, body id (cell data, at
+// Writes displacement and, for mixed bodies, pressure (point data) and Cauchy stress, von Mises, body id (cell data, at
 // cell centroids) for the coefficient vector u.
 void write_vtu(const std::string& path, const scene::Scene& scene, const std::vector<double>& u);
 

@@ -53,7 +53,7 @@ HierarchicalPreconditioner::HierarchicalPreconditioner(MPI_Comm comm, const std:
   STICTION_PETSC(KSPSetOptionsPrefix(ksp_qq_, (prefix + "qq_").c_str()));
 }
 
-void HierarchicalPreconditioner::setup(Mat A, IS linear, IS quadratic, MatNullSpace near_null_space) {
+void HierarchicalPreconditioner::setup(Mat A, IS linear, IS quadratic, MatNullSpace near_null_space, int block_size) {
   STICTION_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(linear)));
   STICTION_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(quadratic)));
   *is_l_.out() = linear;
@@ -74,9 +74,7 @@ void HierarchicalPreconditioner::setup(Mat A, IS linear, IS quadratic, MatNullSp
     STICTION_PETSC(MatCreateSubMatrix(A, linear, quadratic, A_lq_ ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &lq));
     if (!A_lq_) *A_lq_.out() = lq;
   }
-  PetscInt bs;
-  STICTION_PETSC(MatGetBlockSize(A, &bs));
-  STICTION_PETSC(MatSetBlockSize(A_ll_, bs));  // hypre's nodal coarsening needs it
+  STICTION_PETSC(MatSetBlockSize(A_ll_, block_size));  // hypre's nodal coarsening needs it
   if (near_null_space) {
     PetscNullSpace sub(restrict_modes(near_null_space, linear));
     STICTION_PETSC(MatSetNearNullSpace(A_ll_, sub));

@@ -27,8 +27,8 @@ public:
   HierarchicalPreconditioner(MPI_Comm comm, const std::string& prefix);
 
   // Extracts the blocks of A and sets up both sub-solvers. near_null_space (may be null)
-  // is restricted to u_l and handed to the A_ll solver.
-  void setup(Mat A, IS linear, IS quadratic, MatNullSpace near_null_space);
+  // is restricted to u_l and handed to the A_ll solver; block_size (dim) reaches AMG.
+  void setup(Mat A, IS linear, IS quadratic, MatNullSpace near_null_space, int block_size);
   void apply(Vec r, Vec x) const;
 
   void set_form(SchurForm form) { form_ = form; }

@@ -17,7 +17,7 @@ void SchurSolver::configure(const nonlinear::NewtonSystem& system) {
   PC pc;
   STICTION_PETSC(KSPGetPC(ksp(), &pc));
   use_as_shell(pc, hp_);
-  hp_.setup(system.matrix, linear->is, quadratic->is, system.near_null_space);
+  hp_.setup(system.matrix, linear->is, quadratic->is, system.near_null_space, linear->block_size);
 }
 
 void SchurSolver::collect_setup_figures(std::map<std::string, double>& extra) const {

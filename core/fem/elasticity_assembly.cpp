@@ -70,32 +70,54 @@ Mat3 deformation_gradient(const double (&ue)[NB][D], const double (&G)[NB][D]) {
   return F;
 }
 
+// Pressure terms of a mixed cell at one quadrature point (paper (2)-(6)). Sign convention:
+// the pressure equation is written as  -int ((J - 1) + p / kappa) q = 0,  so that the
+// Newton matrix is symmetric, [A Bp^T; Bp -(1/kappa) Mp] with Bp = -int J F^-T : grad(du) q;
+// its pressure Schur complement -(1/kappa) Mp - Bp A^-1 Bp^T is negative, like the MHP
+// approximation alpha Mp with alpha = -(1/mu10 + 1/kappa) < 0.
+//   P <- P' - p J F^-T,   A <- A' - p (J G_iJ G_kL - J G_iL G_kJ),   G = F^-T.
+void add_pressure_to_stress(const Mat3& G, double J, double p, Mat3& P, materials::Tangent* A) {
+  P -= p * J * G;
+  if (!A) return;
+  for (int i = 0; i < 3; ++i)
+    for (int Jx = 0; Jx < 3; ++Jx)
+      for (int k = 0; k < 3; ++k)
+        for (int L = 0; L < 3; ++L)
+          (*A)[materials::tangent_index(i, Jx, k, L)] -= p * J * (G(i, Jx) * G(k, L) - G(i, L) * G(k, Jx));
+}
+
 template <int D, int NB>
-InternalForceStatus internal_kernel(const DisplacementSpace& space, const std::vector<const materials::Material*>& mat,
+InternalForceStatus internal_kernel(const FieldSpace& space, const std::vector<const materials::Material*>& mat,
                                     const std::vector<double>& u, std::vector<double>* residual, StiffnessMatrix* tangent) {
-  constexpr int ND = NB * D;
+  constexpr int ND = NB * D, NP = D + 1, MD = ND + NP;  // element dofs: u, then (mixed) p
   const Tabulation tab = tabulate(D, space.kind(), 2);  // nodal and hierarchical P2 share NB
   const mesh::Mesh& mesh = space.mesh();
   InternalForceStatus status;
   int nodes[NB];
-  int idx[ND];
-  double ue[NB][D], G[NB][D];
-  Eigen::Matrix<double, ND, ND, Eigen::RowMajor> Ke;
-  double re[ND];
-  double C[NB][D][D][D];  // C[b][i][J][k] = sum_L A_iJkL G_bL
+  int idx[MD];
+  double ue[NB][D], pe[NP], G[NB][D], lp[NP];
+  std::vector<double> Ke(MD * MD);
+  double re[MD];
+  double C[NB][D][D][D];  // C[b][i][J][k] = w sum_L A_iJkL G_bL
   materials::Tangent A;
   Mat3 P;
 
   for (int c = 0; c < mesh.n_cells(); ++c) {
+    const double kappa = mat[c]->mixed_bulk_modulus();
+    const int np = kappa > 0 ? NP : 0, m = ND + np;
     space.cell_nodes(c, nodes);
     for (int a = 0; a < NB; ++a)
       for (int i = 0; i < D; ++i) {
         idx[a * D + i] = nodes[a] * D + i;
         ue[a][i] = u[static_cast<size_t>(nodes[a]) * D + i];
       }
+    for (int a = 0; a < np; ++a) {
+      idx[ND + a] = space.pressure_dof(nodes[a]);
+      pe[a] = u[idx[ND + a]];
+    }
     const AffineCell<D> geo = affine_cell<D>(mesh, c);
-    if (tangent) Ke.setZero();
-    std::fill(re, re + ND, 0.0);
+    if (tangent) std::fill(Ke.begin(), Ke.begin() + m * m, 0.0);
+    std::fill(re, re + m, 0.0);
     for (int q = 0; q < tab.rule.size(); ++q) {
       physical_gradients<D, NB>(&tab.dN[static_cast<size_t>(q) * NB * D], geo.inv, G);
       const Mat3 F = deformation_gradient<D, NB>(ue, G);
@@ -106,10 +128,21 @@ InternalForceStatus internal_kernel(const DisplacementSpace& space, const std::v
         continue;
       }
       const double w = tab.rule.weights[q] * std::abs(geo.det);
+      // P1 pressure shape functions: the barycentric coordinates.
+      double p = 0;
+      if (np) {
+        const double* xi = tab.rule.point(q);
+        lp[0] = 1;
+        for (int j = 0; j < D; ++j) lp[0] -= xi[j], lp[j + 1] = xi[j];
+        for (int a = 0; a < NP; ++a) p += lp[a] * pe[a];
+      }
+      const Mat3 Finv_T = np ? Mat3(F.inverse().transpose()) : Mat3::Zero();
       if (!tangent) {
         P = mat[c]->first_piola(F);
+        if (np) add_pressure_to_stress(Finv_T, detF, p, P, nullptr);
       } else {
         mat[c]->first_piola_and_tangent(F, P, A);
+        if (np) add_pressure_to_stress(Finv_T, detF, p, P, &A);
         for (int b = 0; b < NB; ++b)
           for (int i = 0; i < D; ++i)
             for (int J = 0; J < D; ++J)
@@ -125,8 +158,22 @@ InternalForceStatus internal_kernel(const DisplacementSpace& space, const std::v
               for (int k = 0; k < D; ++k) {
                 double s = 0;
                 for (int J = 0; J < D; ++J) s += G[a][J] * C[b][i][J][k];
-                Ke(a * D + i, b * D + k) += s;
+                Ke[(a * D + i) * m + b * D + k] += s;
               }
+        if (np) {
+          for (int a = 0; a < NB; ++a)  // Bp^T: -w J (F^-T grad N_a)_i q_b, and its transpose
+            for (int i = 0; i < D; ++i) {
+              double g = 0;
+              for (int J = 0; J < D; ++J) g += Finv_T(i, J) * G[a][J];
+              for (int b = 0; b < NP; ++b) {
+                const double v = -w * detF * g * lp[b];
+                Ke[(a * D + i) * m + ND + b] += v;
+                Ke[(ND + b) * m + a * D + i] += v;
+              }
+            }
+          for (int a = 0; a < NP; ++a)  // -(1/kappa) Mp
+            for (int b = 0; b < NP; ++b) Ke[(ND + a) * m + ND + b] -= w / kappa * lp[a] * lp[b];
+        }
       }
       for (int a = 0; a < NB; ++a)
         for (int i = 0; i < D; ++i) {
@@ -134,22 +181,23 @@ InternalForceStatus internal_kernel(const DisplacementSpace& space, const std::v
           for (int J = 0; J < D; ++J) s += P(i, J) * G[a][J];
           re[a * D + i] += w * s;
         }
+      for (int a = 0; a < np; ++a) re[ND + a] -= w * ((detF - 1) + p / kappa) * lp[a];
     }
     if (residual)
-      for (int k = 0; k < ND; ++k) (*residual)[idx[k]] += re[k];
+      for (int k = 0; k < m; ++k) (*residual)[idx[k]] += re[k];
     if (tangent) {
       for (int a = 0; a < NB; ++a)
         for (int b = 0; b < a; ++b)
           for (int i = 0; i < D; ++i)
-            for (int k = 0; k < D; ++k) Ke(a * D + i, b * D + k) = Ke(b * D + k, a * D + i);
-      tangent->add(nodes, NB, Ke.data());
+            for (int k = 0; k < D; ++k) Ke[(a * D + i) * m + b * D + k] = Ke[(b * D + k) * m + a * D + i];
+      tangent->add(nodes, NB, np, Ke.data());
     }
   }
   return status;
 }
 
 template <class F>
-auto dispatch(const DisplacementSpace& space, F&& f) {
+auto dispatch(const FieldSpace& space, F&& f) {
   const bool quad = is_quadratic(space.kind());
   switch (space.dim() * 10 + (quad ? 2 : 1)) {
     case 21: return f(std::integral_constant<int, 2>{}, std::integral_constant<int, 3>{});
@@ -161,7 +209,7 @@ auto dispatch(const DisplacementSpace& space, F&& f) {
 }
 
 // Integrates residual -= int g(X) N_a over simplices of dimension sd given by vertex lists.
-void subtract_load(const DisplacementSpace& space, int sd, const std::vector<std::vector<int>>& simplex_nodes,
+void subtract_load(const FieldSpace& space, int sd, const std::vector<std::vector<int>>& simplex_nodes,
                    const std::vector<const int*>& simplex_vertices, const VectorField& g,
                    std::vector<double>& residual) {
   const int d = space.dim();
@@ -192,7 +240,7 @@ void subtract_load(const DisplacementSpace& space, int sd, const std::vector<std
 
 }  // namespace
 
-InternalForceStatus assemble_internal(const DisplacementSpace& space,
+InternalForceStatus assemble_internal(const FieldSpace& space,
                                       const std::vector<const materials::Material*>& cell_material,
                                       const std::vector<double>& u, std::vector<double>* residual, StiffnessMatrix* tangent) {
   return dispatch(space, [&](auto D, auto NB) {
@@ -200,7 +248,7 @@ InternalForceStatus assemble_internal(const DisplacementSpace& space,
   });
 }
 
-void subtract_body_force(const DisplacementSpace& space, const VectorField& f, std::vector<double>& residual) {
+void subtract_body_force(const FieldSpace& space, const VectorField& f, std::vector<double>& residual) {
   const int nc = space.mesh().n_cells();
   std::vector<std::vector<int>> nodes(nc, std::vector<int>(space.nodes_per_cell()));
   std::vector<const int*> verts(nc);
@@ -211,7 +259,7 @@ void subtract_body_force(const DisplacementSpace& space, const VectorField& f, s
   subtract_load(space, space.dim(), nodes, verts, f, residual);
 }
 
-void subtract_traction(const DisplacementSpace& space, int facet_tag, const VectorField& t,
+void subtract_traction(const FieldSpace& space, int facet_tag, const VectorField& t,
                        std::vector<double>& residual) {
   std::vector<std::vector<int>> nodes;
   std::vector<const int*> verts;
@@ -224,7 +272,29 @@ void subtract_traction(const DisplacementSpace& space, int facet_tag, const Vect
   subtract_load(space, space.dim() - 1, nodes, verts, t, residual);
 }
 
-std::vector<double> cell_cauchy_stress(const DisplacementSpace& space,
+Mat assemble_pressure_mass(MPI_Comm comm, const FieldSpace& space) {
+  const int d = space.dim(), n = space.n_pressure_dofs(), first = space.pressure_block().first;
+  Mat M;
+  STICTION_PETSC(MatCreateAIJ(comm, n, n, n, n, 32, nullptr, 0, nullptr, &M));
+  // Exact P1 element mass matrix: |K| (1 + delta_ab) / ((d + 1)(d + 2)).
+  for (int c = 0; c < space.mesh().n_cells(); ++c) {
+    const int* v = space.mesh().cell(c);
+    if (space.pressure_dof(v[0]) < 0) continue;
+    const double vol = std::abs(mesh::signed_measure(space.mesh(), c));
+    PetscInt idx[4];
+    double Me[16];
+    for (int a = 0; a <= d; ++a) {
+      idx[a] = space.pressure_dof(v[a]) - first;
+      for (int b = 0; b <= d; ++b) Me[a * (d + 1) + b] = vol * (a == b ? 2.0 : 1.0) / ((d + 1) * (d + 2));
+    }
+    STICTION_PETSC(MatSetValues(M, d + 1, idx, d + 1, idx, Me, ADD_VALUES));
+  }
+  STICTION_PETSC(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
+  STICTION_PETSC(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
+  return M;
+}
+
+std::vector<double> cell_cauchy_stress(const FieldSpace& space,
                                        const std::vector<const materials::Material*>& cell_material,
                                        const std::vector<double>& u) {
   return dispatch(space, [&](auto Dc, auto NBc) {
@@ -240,7 +310,12 @@ std::vector<double> cell_cauchy_stress(const DisplacementSpace& space,
       for (int a = 0; a < NB; ++a)
         for (int i = 0; i < D; ++i) ue[a][i] = u[static_cast<size_t>(nodes[a]) * D + i];
       physical_gradients<D, NB>(dN, affine_cell<D>(space.mesh(), c).inv, G);
-      const Mat3 sigma = cell_material[c]->cauchy(deformation_gradient<D, NB>(ue, G));
+      Mat3 sigma = cell_material[c]->cauchy(deformation_gradient<D, NB>(ue, G));
+      if (cell_material[c]->mixed_bulk_modulus() > 0) {  // sigma = sigma' - p I, p at the centroid
+        double p = 0;
+        for (int a = 0; a <= D; ++a) p += u[space.pressure_dof(nodes[a])] / (D + 1);
+        sigma -= p * Mat3::Identity();
+      }
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) out.push_back(sigma(i, j));
     }

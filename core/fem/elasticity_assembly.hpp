@@ -6,7 +6,7 @@
 // number of shape functions; loads are dead loads on the reference configuration.
 #include <vector>
 
-#include "fem/displacement_space.hpp"
+#include "fem/field_space.hpp"
 #include "fem/stiffness_matrix.hpp"
 #include "materials/material.hpp"
 
@@ -21,19 +21,23 @@ struct InternalForceStatus {
 // null; values are added between its begin_assembly and end_assembly, which the caller
 // calls) for the coefficient vector u.
 // cell_material[c] is the law of cell c.
-InternalForceStatus assemble_internal(const DisplacementSpace& space,
+InternalForceStatus assemble_internal(const FieldSpace& space,
                                       const std::vector<const materials::Material*>& cell_material,
                                       const std::vector<double>& u, std::vector<double>* residual,
                                       StiffnessMatrix* tangent);
 
 // residual -= int_Omega f N_a (f may vary in space).
-void subtract_body_force(const DisplacementSpace& space, const VectorField& f, std::vector<double>& residual);
+void subtract_body_force(const FieldSpace& space, const VectorField& f, std::vector<double>& residual);
 // residual -= int_{facets with tag} t N_a.
-void subtract_traction(const DisplacementSpace& space, int facet_tag, const VectorField& t,
+void subtract_traction(const FieldSpace& space, int facet_tag, const VectorField& t,
                        std::vector<double>& residual);
 
+// P1 mass matrix of the pressure field, M_p[i][j] = int q_i q_j over mixed cells, numbered
+// within the pressure block (row i = pressure dof - first pressure dof).
+Mat assemble_pressure_mass(MPI_Comm comm, const FieldSpace& space);
+
 // Cauchy stress (3x3, row-major) at each cell's centroid, for output.
-std::vector<double> cell_cauchy_stress(const DisplacementSpace& space,
+std::vector<double> cell_cauchy_stress(const FieldSpace& space,
                                        const std::vector<const materials::Material*>& cell_material,
                                        const std::vector<double>& u);
 

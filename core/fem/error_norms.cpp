@@ -8,7 +8,7 @@
 
 namespace stiction::fem {
 
-ErrorNorms compute_errors(const DisplacementSpace& space, const std::vector<double>& u, const VectorField& exact,
+ErrorNorms compute_errors(const FieldSpace& space, const std::vector<double>& u, const VectorField& exact,
                           const VectorGradient& exact_gradient, int degree) {
   const int d = space.dim(), nb = space.nodes_per_cell();
   const QuadratureRule rule = simplex_quadrature(d, degree);

@@ -4,7 +4,7 @@
 #include <functional>
 #include <vector>
 
-#include "fem/displacement_space.hpp"
+#include "fem/field_space.hpp"
 
 namespace stiction::fem {
 
@@ -16,7 +16,7 @@ struct ErrorNorms {
   double h1_seminorm = 0;
 };
 
-ErrorNorms compute_errors(const DisplacementSpace& space, const std::vector<double>& u, const VectorField& exact,
+ErrorNorms compute_errors(const FieldSpace& space, const std::vector<double>& u, const VectorField& exact,
                           const VectorGradient& exact_gradient, int quadrature_degree = 6);
 
 }  // namespace stiction::fem

@@ -6,11 +6,12 @@
 
 namespace stiction::fem {
 
-StiffnessMatrix::StiffnessMatrix(MPI_Comm comm, const DisplacementSpace& space) : dim_(space.dim()) {
+StiffnessMatrix::StiffnessMatrix(MPI_Comm comm, const FieldSpace& space) : space_(&space), dim_(space.dim()) {
   int size = 1;
   MPI_Comm_size(comm, &size);
   if (size != 1) throw Error("stiction runs on one MPI rank for now (the mesh is not distributed yet)");
   const int nn = space.n_nodes(), npc = space.nodes_per_cell(), nc = space.mesh().n_cells(), d = dim_;
+  const int nv = space.n_vertices();
 
   // Node -> cells incidence, then each node's sorted, unique neighbours.
   std::vector<int> cell_nodes(static_cast<size_t>(nc) * npc), first(nn + 1, 0), incident;
@@ -34,30 +35,44 @@ StiffnessMatrix::StiffnessMatrix(MPI_Comm comm, const DisplacementSpace& space) 
     row.erase(std::unique(row.begin(), row.end()), row.end());
     neighbours_.insert(neighbours_.end(), row.begin(), row.end());
     offsets_.push_back(static_cast<int>(neighbours_.size()));
+    vertex_degree_.push_back(static_cast<int>(std::lower_bound(row.begin(), row.end(), nv) - row.begin()));
+  }
+  // A node is on a mixed body when its vertices carry a pressure (bodies share no node).
+  mixed_.assign(nn, 0);
+  for (int n = 0; n < nn; ++n) {
+    const int v = n < nv ? n : space.edges().edges[n - nv][0];
+    mixed_[n] = space.pressure_dof(v) >= 0;
   }
 
-  const PetscInt n = space.n_dofs();
-  std::vector<PetscInt> nnz(n);
-  for (int a = 0; a < nn; ++a)
-    for (int i = 0; i < d; ++i) nnz[static_cast<size_t>(a) * d + i] = d * degree(a);
+  // Row lengths in global row order: displacement rows, then pressure rows.
+  const PetscInt n_rows = space.n_dofs();
+  std::vector<PetscInt> nnz(n_rows);
+  for (int a = 0; a < nn; ++a) {
+    const PetscInt len = static_cast<PetscInt>(d) * degree(a) + (mixed_[a] ? vertex_degree_[a] : 0);
+    for (int i = 0; i < d; ++i) nnz[static_cast<size_t>(a) * d + i] = len;
+    if (a < nv && space.pressure_dof(a) >= 0) nnz[space.pressure_dof(a)] = len;
+  }
+  row_start_.assign(n_rows + 1, 0);
+  for (PetscInt r = 0; r < n_rows; ++r) row_start_[r + 1] = row_start_[r] + nnz[r];
+
   STICTION_PETSC(MatCreate(comm, A_.out()));
-  STICTION_PETSC(MatSetSizes(A_, n, n, n, n));
+  STICTION_PETSC(MatSetSizes(A_, n_rows, n_rows, n_rows, n_rows));
   STICTION_PETSC(MatSetType(A_, MATAIJ));
-  STICTION_PETSC(MatSetBlockSize(A_, d));
+  STICTION_PETSC(MatSetBlockSize(A_, space.has_pressure() ? 1 : d));
   STICTION_PETSC(MatSeqAIJSetPreallocation(A_, 0, nnz.data()));
   STICTION_PETSC(MatMPIAIJSetPreallocation(A_, 0, nnz.data(), 0, nullptr));
   std::vector<PetscInt>().swap(nnz);
   // Fix the pattern by inserting explicit zeros, one node's rows at a time.
-  std::vector<PetscInt> rows(d), cols;
+  std::vector<PetscInt> rows;
   std::vector<PetscScalar> zeros;
   for (int a = 0; a < nn; ++a) {
-    cols.clear();
-    for (int j = offsets_[a]; j < offsets_[a + 1]; ++j)
-      for (int k = 0; k < d; ++k) cols.push_back(static_cast<PetscInt>(neighbours_[j]) * d + k);
-    for (int i = 0; i < d; ++i) rows[i] = static_cast<PetscInt>(a) * d + i;
+    const std::vector<PetscInt> cols = row_columns(a);
+    rows.clear();
+    for (int i = 0; i < d; ++i) rows.push_back(static_cast<PetscInt>(a) * d + i);
+    if (a < nv && space.pressure_dof(a) >= 0) rows.push_back(space.pressure_dof(a));
     zeros.assign(rows.size() * cols.size(), 0.0);
-    STICTION_PETSC(MatSetValues(A_, d, rows.data(), static_cast<PetscInt>(cols.size()), cols.data(), zeros.data(),
-                                INSERT_VALUES));
+    STICTION_PETSC(MatSetValues(A_, static_cast<PetscInt>(rows.size()), rows.data(), static_cast<PetscInt>(cols.size()),
+                                cols.data(), zeros.data(), INSERT_VALUES));
   }
   STICTION_PETSC(MatAssemblyBegin(A_, MAT_FINAL_ASSEMBLY));
   STICTION_PETSC(MatAssemblyEnd(A_, MAT_FINAL_ASSEMBLY));
@@ -67,20 +82,24 @@ StiffnessMatrix::StiffnessMatrix(MPI_Comm comm, const DisplacementSpace& space) 
   direct_ = seq && layout_matches_petsc();
 }
 
-// Row a*d+i of the direct layout starts at d*d*offsets[a] + i*d*degree(a).
+// Columns of every row of node a, in the documented layout.
+std::vector<PetscInt> StiffnessMatrix::row_columns(int a) const {
+  std::vector<PetscInt> cols;
+  for (int j = offsets_[a]; j < offsets_[a + 1]; ++j)
+    for (int k = 0; k < dim_; ++k) cols.push_back(static_cast<PetscInt>(neighbours_[j]) * dim_ + k);
+  if (mixed_[a])
+    for (int j = offsets_[a]; j < offsets_[a] + vertex_degree_[a]; ++j) cols.push_back(space_->pressure_dof(neighbours_[j]));
+  return cols;
+}
+
 bool StiffnessMatrix::layout_matches_petsc() const {
   const PetscInt* ia;
   const PetscInt* ja;
   PetscInt n;
   PetscBool done;
   if (MatGetRowIJ(A_, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done) || !done) return false;
-  bool ok = true;
-  const int d = dim_;
-  for (int a = 0; ok && a < static_cast<int>(offsets_.size()) - 1; ++a)
-    for (int i = 0; i < d; ++i) {
-      const PetscInt start = static_cast<PetscInt>(d) * d * offsets_[a] + static_cast<PetscInt>(i) * d * degree(a);
-      if (ia[a * d + i] != start || ja[start] != static_cast<PetscInt>(neighbours_[offsets_[a]]) * d) ok = false;
-    }
+  bool ok = n + 1 == static_cast<PetscInt>(row_start_.size());
+  for (PetscInt r = 0; ok && r <= n; ++r) ok = ia[r] == row_start_[r];
   MatRestoreRowIJ(A_, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done);
   return ok;
 }
@@ -90,25 +109,31 @@ void StiffnessMatrix::begin_assembly() {
   if (direct_) STICTION_PETSC(MatSeqAIJGetArray(A_, &values_));
 }
 
-void StiffnessMatrix::add(const int* nodes, int n_nodes, const double* Ke) {
-  const int d = dim_, nd = n_nodes * d;
+void StiffnessMatrix::add(const int* nodes, int n_nodes, int n_pressure_nodes, const double* Ke) {
+  const int d = dim_, m = n_nodes * d + n_pressure_nodes;
   if (!direct_) {
     PetscInt idx[64];
     for (int a = 0; a < n_nodes; ++a)
       for (int i = 0; i < d; ++i) idx[a * d + i] = static_cast<PetscInt>(nodes[a]) * d + i;
-    STICTION_PETSC(MatSetValues(A_, nd, idx, nd, idx, Ke, ADD_VALUES));
+    for (int a = 0; a < n_pressure_nodes; ++a) idx[n_nodes * d + a] = space_->pressure_dof(nodes[a]);
+    STICTION_PETSC(MatSetValues(A_, m, idx, m, idx, Ke, ADD_VALUES));
     return;
   }
   for (int a = 0; a < n_nodes; ++a) {
     const int na = nodes[a], deg = degree(na);
     const int* nb_begin = &neighbours_[offsets_[na]];
-    PetscScalar* base = values_ + static_cast<size_t>(d) * d * offsets_[na];
+    // The element rows of node a: its components, then its pressure.
+    int n_rows = 0, element_row[4];
+    PetscInt global_row[4];
+    for (int i = 0; i < d; ++i) element_row[n_rows] = a * d + i, global_row[n_rows++] = static_cast<PetscInt>(na) * d + i;
+    if (a < n_pressure_nodes) element_row[n_rows] = n_nodes * d + a, global_row[n_rows++] = space_->pressure_dof(na);
     for (int b = 0; b < n_nodes; ++b) {
       const int pos = static_cast<int>(std::lower_bound(nb_begin, nb_begin + deg, nodes[b]) - nb_begin);
-      for (int i = 0; i < d; ++i) {
-        PetscScalar* dst = base + static_cast<size_t>(i) * d * deg + static_cast<size_t>(d) * pos;
-        const double* src = Ke + static_cast<size_t>(a * d + i) * nd + b * d;
-        for (int k = 0; k < d; ++k) dst[k] += src[k];
+      for (int r = 0; r < n_rows; ++r) {
+        PetscScalar* dst = values_ + row_start_[global_row[r]];
+        const double* src = Ke + static_cast<size_t>(element_row[r]) * m;
+        for (int k = 0; k < d; ++k) dst[d * pos + k] += src[b * d + k];
+        if (b < n_pressure_nodes) dst[d * deg + pos] += src[n_nodes * d + b];
       }
     }
   }

@@ -38,7 +38,7 @@ std::string to_string(NewtonReason r) {
   return "UNKNOWN";
 }
 
-MatNullSpace rigid_body_modes(MPI_Comm comm, const fem::DisplacementSpace& space) {
+MatNullSpace rigid_body_modes(MPI_Comm comm, const fem::FieldSpace& space) {
   const int d = space.dim();
   const mesh::Mesh& m = space.mesh();
   double c[3] = {0, 0, 0};  // rotate about the centroid: better-conditioned modes
@@ -80,7 +80,7 @@ MatNullSpace rigid_body_modes(MPI_Comm comm, const fem::DisplacementSpace& space
   std::vector<Vec> vecs(n_modes);
   for (int i = 0; i < n_modes; ++i) {
     STICTION_PETSC(VecCreateMPI(comm, space.n_dofs(), space.n_dofs(), &vecs[i]));
-    STICTION_PETSC(VecSetBlockSize(vecs[i], d));
+    STICTION_PETSC(VecSetBlockSize(vecs[i], space.has_pressure() ? 1 : d));
     copy_to_vec(modes[i], vecs[i]);
   }
   MatNullSpace nsp;
@@ -92,31 +92,41 @@ MatNullSpace rigid_body_modes(MPI_Comm comm, const fem::DisplacementSpace& space
 QuasiStaticSolver::QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& problem, const NewtonSettings& settings,
                                      LinearSolver& linear)
     : comm_(comm), problem_(problem), settings_(settings), linear_(linear) {
-  const fem::DisplacementSpace& space = *problem.space;
+  const fem::FieldSpace& space = *problem.space;
   if (static_cast<int>(problem.cell_material.size()) != space.mesh().n_cells())
     throw Error("problem: one material per cell expected", ErrorKind::Internal);
   u_.assign(space.n_dofs(), 0.0);
   system_.comm = comm;
-  system_.block_size = space.dim();
+  system_.block_size = space.has_pressure() ? 1 : space.dim();
   stiffness_ = std::make_unique<fem::StiffnessMatrix>(comm, space);
   STICTION_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(stiffness_->mat())));
   *system_.matrix.out() = stiffness_->mat();
   STICTION_PETSC(MatCreateVecs(system_.matrix, nullptr, system_.rhs.out()));
-  auto add_field = [&](const char* name, std::pair<int, int> range) {
-    FieldBlock f{name, {}, space.dim()};
+  auto add_field = [&](const char* name, std::pair<int, int> range, int block_size) {
+    FieldBlock f{name, {}, block_size};
     STICTION_PETSC(ISCreateStride(comm, range.second - range.first, range.first, 1, f.is.out()));
-    STICTION_PETSC(ISSetBlockSize(f.is, space.dim()));
+    STICTION_PETSC(ISSetBlockSize(f.is, block_size));
     system_.fields.push_back(std::move(f));
   };
-  add_field("u_l", space.linear_block());
-  if (fem::is_quadratic(space.kind())) add_field("u_q", space.quadratic_block());
+  add_field("u_l", space.linear_block(), space.dim());
+  if (fem::is_quadratic(space.kind())) add_field("u_q", space.quadratic_block(), space.dim());
+  if (space.has_pressure()) add_field("p", space.pressure_block(), 1);
+  if (space.has_pressure()) {
+    *system_.pressure_mass.out() = fem::assemble_pressure_mass(comm, space);
+    // alpha of MHP (11) from the (first) mixed law; the paper's scenes have one rubber body.
+    for (const auto* m : problem.cell_material)
+      if (m->mixed_bulk_modulus() > 0) {
+        system_.pressure_schur_scale = m->pressure_schur_scale();
+        break;
+      }
+  }
   *system_.near_null_space.out() = rigid_body_modes(comm, space);
   STICTION_PETSC(MatSetNearNullSpace(system_.matrix, system_.near_null_space));
   build_constraints();
 }
 
 void QuasiStaticSolver::build_constraints() {
-  const fem::DisplacementSpace& space = *problem_.space;
+  const fem::FieldSpace& space = *problem_.space;
   const int d = space.dim();
   is_constrained_.assign(space.n_dofs(), 0);
   std::vector<int> nodes(space.nodes_per_facet());
@@ -140,7 +150,7 @@ void QuasiStaticSolver::build_constraints() {
 
 fem::InternalForceStatus QuasiStaticSolver::residual(int step, const std::vector<double>& u,
                                                      std::vector<double>& r) const {
-  const fem::DisplacementSpace& space = *problem_.space;
+  const fem::FieldSpace& space = *problem_.space;
   r.assign(space.n_dofs(), 0.0);
   auto status = fem::assemble_internal(space, problem_.cell_material, u, &r, nullptr);
   if (problem_.body_force)
@@ -158,7 +168,7 @@ double QuasiStaticSolver::free_norm(const std::vector<double>& r) const {
 }
 
 std::map<std::string, std::array<double, 3>> QuasiStaticSolver::reactions(const std::vector<double>& r) const {
-  const fem::DisplacementSpace& space = *problem_.space;
+  const fem::FieldSpace& space = *problem_.space;
   const int d = space.dim();
   std::map<std::string, std::array<double, 3>> out;
   for (size_t b = 0; b < problem_.dirichlet.size(); ++b) {
@@ -195,7 +205,7 @@ void QuasiStaticSolver::assemble_system(int step, const std::vector<double>& r, 
 
 StepResult QuasiStaticSolver::solve_step(int step) {
   const auto t_step = std::chrono::steady_clock::now();
-  const fem::DisplacementSpace& space = *problem_.space;
+  const fem::FieldSpace& space = *problem_.space;
   const int d = space.dim();
   StepResult res;
   res.step = step;

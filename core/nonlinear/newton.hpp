@@ -107,6 +107,6 @@ private:
 
 // Rigid-body modes of the space (translations, rotations about the origin) interpolated in
 // its basis and orthonormalised: the near-null space handed to AMG.
-MatNullSpace rigid_body_modes(MPI_Comm comm, const fem::DisplacementSpace& space);
+MatNullSpace rigid_body_modes(MPI_Comm comm, const fem::FieldSpace& space);
 
 }  // namespace stiction::nonlinear

@@ -23,6 +23,10 @@ struct NewtonSystem {
   std::vector<FieldBlock> fields;
   PetscNullSpace near_null_space;  // rigid-body modes of the displacement (also on matrix)
   int block_size = 1;
+  // Mixed (u-p) systems only: the P1 pressure mass matrix M_p (on the p block's numbering)
+  // and alpha of MHP (11), so a preconditioner can use S_p ~ alpha M_p.
+  PetscMat pressure_mass;
+  double pressure_schur_scale = 0;
 
   const FieldBlock* field(const std::string& name) const {
     for (const auto& f : fields)

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "fem/displacement_space.hpp"
+#include "fem/field_space.hpp"
 #include "materials/material.hpp"
 
 namespace stiction::nonlinear {
@@ -27,7 +27,7 @@ struct TractionLoad {  // dead load per reference area
 };
 
 struct ElasticityProblem {
-  const fem::DisplacementSpace* space = nullptr;
+  const fem::FieldSpace* space = nullptr;
   std::vector<const materials::Material*> cell_material;  // one per cell
   std::vector<DirichletCondition> dirichlet;
   std::vector<TractionLoad> tractions;

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -28,9 +29,14 @@ struct Schemas {
                     std::int64_t{0}}}};
     material = {"material",
                 {{"name", VT::String, "name bodies refer to", true},
-                 {"model", VT::String, "constitutive law", true, {}, {"linear", "neo-hookean"}},
-                 {"E", VT::Float, "Young's modulus", true},
-                 {"nu", VT::Float, "Poisson's ratio", true}}};
+                 {"model", VT::String, "constitutive law", true, {}, {"linear", "neo-hookean", "mooney-rivlin"}},
+                 {"E", VT::Float, "Young's modulus (linear, neo-hookean)", false},
+                 {"nu", VT::Float, "Poisson's ratio (linear, neo-hookean)", false},
+                 {"mu10", VT::Float, "Mooney-Rivlin coefficient of I1", false},
+                 {"mu01", VT::Float, "Mooney-Rivlin coefficient of I2", false},
+                 {"kappa", VT::Float, "Mooney-Rivlin bulk modulus", false},
+                 {"formulation", VT::String, "Mooney-Rivlin unknowns: mixed u-p (paper) or displacement only", false,
+                  std::string("mixed"), {"mixed", "displacement"}}}};
     mesh = {"mesh",
             {{"file", VT::String, "Gmsh .msh file (version 4), relative to the scene file", false},
              {"generator", VT::String, "built-in geometry instead of a file", false, {}, {"box", "structured-box"}},
@@ -98,13 +104,25 @@ std::vector<const toml::table*> tables(const toml::table& t, const char* key) {
 
 std::unique_ptr<materials::Material> make_material(const toml::table& t, const std::string& file) {
   const auto& S = schemas().material;
-  const std::string model = get_string(t, S, "model");
-  const double E = get_float(t, S, "E"), nu = get_float(t, S, "nu");
+  const std::string model = get_string(t, S, "model"), name = get_string(t, S, "name");
+  // The keys a model needs, and none of another model's.
+  const std::vector<std::string> needs = model == "mooney-rivlin" ? std::vector<std::string>{"mu10", "mu01", "kappa"}
+                                                                  : std::vector<std::string>{"E", "nu"};
+  for (const auto& k : needs)
+    if (!t.contains(k)) throw Error(fmt::format("{}: material '{}': model '{}' needs key '{}'", file, name, model, k));
+  for (const char* k : {"E", "nu", "mu10", "mu01", "kappa", "formulation"})
+    if (t.contains(k) && std::find(needs.begin(), needs.end(), k) == needs.end() &&
+        !(model == "mooney-rivlin" && std::string(k) == "formulation"))
+      throw Error(fmt::format("{}: material '{}': key '{}' does not apply to model '{}'", file, name, k, model));
   try {
-    if (model == "linear") return std::make_unique<materials::LinearElastic>(E, nu);
-    return std::make_unique<materials::NeoHookean>(E, nu);
+    if (model == "linear") return std::make_unique<materials::LinearElastic>(get_float(t, S, "E"), get_float(t, S, "nu"));
+    if (model == "neo-hookean") return std::make_unique<materials::NeoHookean>(get_float(t, S, "E"), get_float(t, S, "nu"));
+    const auto form = get_string(t, S, "formulation") == "mixed" ? materials::MooneyRivlin::Form::Mixed
+                                                                 : materials::MooneyRivlin::Form::Displacement;
+    return std::make_unique<materials::MooneyRivlin>(get_float(t, S, "mu10"), get_float(t, S, "mu01"),
+                                                     get_float(t, S, "kappa"), form);
   } catch (const Error& e) {
-    throw Error(fmt::format("{}: material '{}': {}", file, get_string(t, S, "name"), e.what()));
+    throw Error(fmt::format("{}: material '{}': {}", file, name, e.what()));
   }
 }
 
@@ -232,7 +250,17 @@ std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& o
   }
 
   const auto basis = fem::basis_kind_from_string(get_string(meta, S.scene_meta, "basis"));
-  s.space = std::make_unique<fem::DisplacementSpace>(s.mesh, basis);
+  // A pressure field only on the vertices of bodies whose law is mixed (none otherwise).
+  std::vector<char> has_pressure;
+  for (int c = 0; c < s.mesh.n_cells(); ++c)
+    if (body_material[s.body_of_cell[c]]->mixed_bulk_modulus() > 0) {
+      has_pressure.resize(s.mesh.n_vertices(), 0);
+      for (int k = 0; k <= s.mesh.dim; ++k) has_pressure[s.mesh.cell(c)[k]] = 1;
+    }
+  if (!has_pressure.empty() && basis != fem::BasisKind::P2Hierarchical && basis != fem::BasisKind::P2Nodal)
+    throw Error(fmt::format("{}: a mixed (u-p) law needs a P2 displacement (Taylor-Hood); basis '{}' is not stable",
+                            origin, fem::to_string(basis)));
+  s.space = std::make_unique<fem::FieldSpace>(s.mesh, basis, has_pressure);
   auto& P = s.problem;
   P.space = s.space.get();
   for (int b : s.body_of_cell) P.cell_material.push_back(body_material[b]);

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "fem/displacement_space.hpp"
+#include "fem/field_space.hpp"
 #include "materials/material.hpp"
 #include "mesh/mesh.hpp"
 #include "nonlinear/newton.hpp"
@@ -31,7 +31,7 @@ struct Scene {
   std::vector<int> body_of_cell;
   std::vector<std::unique_ptr<materials::Material>> materials;
   std::vector<std::string> material_of_body;  // descriptions, for reports
-  std::unique_ptr<fem::DisplacementSpace> space;
+  std::unique_ptr<fem::FieldSpace> space;
   nonlinear::ElasticityProblem problem;
   nonlinear::NewtonSettings newton;
   OutputSettings output;

@@ -82,7 +82,7 @@ int iterations_with_exact_blocks(SchurForm form, double* residual) {
   PetscOptionsSetValue(nullptr, "-hp_test_qq_pc_type", "lu");
   HierarchicalPreconditioner hp(PETSC_COMM_WORLD, "hp_test_");
   hp.set_form(SchurForm::Full);  // extracts A_lq, needed for S
-  hp.setup(sys.matrix, sys.field("u_l")->is, sys.field("u_q")->is, sys.near_null_space);
+  hp.setup(sys.matrix, sys.field("u_l")->is, sys.field("u_q")->is, sys.near_null_space, sys.field("u_l")->block_size);
   hp.set_form(form);
   Mat S = exact_schur(hp);
   hp.set_quadratic_operator(S);
@@ -112,7 +112,7 @@ TEST(HierarchicalPreconditioner, PaperSettingsConvergeInAFewDozenIterations) {
   PetscOptionsSetValue(nullptr, "-hp_paper_qq_pc_type", "sor");
   PetscOptionsSetValue(nullptr, "-hp_paper_qq_pc_sor_symmetric", nullptr);
   HierarchicalPreconditioner hp(PETSC_COMM_WORLD, "hp_paper_");
-  hp.setup(sys.matrix, sys.field("u_l")->is, sys.field("u_q")->is, sys.near_null_space);
+  hp.setup(sys.matrix, sys.field("u_l")->is, sys.field("u_q")->is, sys.near_null_space, sys.field("u_l")->block_size);
   double residual;
   const int its = gmres_iterations(sys, hp, &residual);
   EXPECT_LT(residual, 1e-10);

@@ -63,7 +63,7 @@ SolvedProblem solve_manufactured(int dim, int n, int level, fem::BasisKind kind)
   const ManufacturedSolution ms = manufactured(dim);
   SolvedProblem out;
   out.mesh = mesh::refine(mesh::structured_box(dim, {1, 1, 1}, {n, n, n}), level);
-  out.space = std::make_unique<fem::DisplacementSpace>(out.mesh, kind);
+  out.space = std::make_unique<fem::FieldSpace>(out.mesh, kind);
   materials::LinearElastic law(1.0, 0.3);
   nonlinear::ElasticityProblem p;
   p.space = out.space.get();

@@ -7,7 +7,7 @@
 #include <memory>
 #include <vector>
 
-#include "fem/displacement_space.hpp"
+#include "fem/field_space.hpp"
 #include "fem/error_norms.hpp"
 #include "mesh/mesh.hpp"
 
@@ -25,7 +25,7 @@ ManufacturedSolution manufactured(int dim);  // E = 1, nu = 0.3
 
 struct SolvedProblem {
   mesh::Mesh mesh;
-  std::unique_ptr<fem::DisplacementSpace> space;
+  std::unique_ptr<fem::FieldSpace> space;
   std::vector<double> u;
   fem::ErrorNorms errors;
 };

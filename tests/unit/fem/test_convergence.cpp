@@ -81,7 +81,7 @@ TEST_P(LinearBlockIsP1, ToRoundOff) {
     }
   };
   auto tangent = [&](BasisKind kind, std::vector<double>& residual) {
-    fem::DisplacementSpace space(m, kind);
+    fem::FieldSpace space(m, kind);
     std::vector<double> u;
     space.interpolate(deform, u);
     residual.assign(space.n_dofs(), 0.0);

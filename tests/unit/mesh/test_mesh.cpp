@@ -7,7 +7,7 @@
 #include <map>
 
 #include "common/error.hpp"
-#include "fem/displacement_space.hpp"
+#include "fem/field_space.hpp"
 #include "mesh/gmsh_io.hpp"
 #include "mesh/mesh.hpp"
 
@@ -37,7 +37,7 @@ TEST_P(Refinement, CountsTagsMeasureAndOrientation) {
   EXPECT_EQ(fine.n_facets(), facet_children * coarse.n_facets());
   // Vertices of level k+1 are the P2 nodes of level k.
   EXPECT_EQ(fine.n_vertices(), coarse.n_vertices() + build_edges(coarse).n_edges());
-  const fem::DisplacementSpace p2(coarse, fem::BasisKind::P2Hierarchical);
+  const fem::FieldSpace p2(coarse, fem::BasisKind::P2Hierarchical);
   ASSERT_EQ(p2.n_nodes(), fine.n_vertices());
   for (int n = 0; n < p2.n_nodes(); ++n) {
     double X[3];

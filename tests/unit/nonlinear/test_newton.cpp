@@ -29,7 +29,7 @@ class TangentVsFiniteDifferences : public ::testing::TestWithParam<std::tuple<in
 TEST_P(TangentVsFiniteDifferences, RelativeError1e6) {
   const auto [dim, kind] = GetParam();
   const mesh::Mesh m = mesh::refine(mesh::structured_box(dim, {1, 1, 1}, {2, 2, 2}), dim == 2 ? 1 : 0);
-  const fem::DisplacementSpace space(m, kind);
+  const fem::FieldSpace space(m, kind);
   materials::NeoHookean law(10.0, 0.35);
   const std::vector<const materials::Material*> mats(m.n_cells(), &law);
   std::mt19937 rng(42);
@@ -80,6 +80,60 @@ INSTANTIATE_TEST_SUITE_P(All, TangentVsFiniteDifferences,
                                                               BasisKind::P2Hierarchical)),
                          name_of);
 
+// The mixed (u-p) Mooney-Rivlin system: tangent against finite differences of the full
+// residual (displacement and pressure rows), and symmetric as the sign convention intends.
+class MixedTangent : public ::testing::TestWithParam<int> {};
+
+TEST_P(MixedTangent, MatchesFiniteDifferencesAndIsSymmetric) {
+  const int dim = GetParam();
+  const mesh::Mesh m = mesh::refine(mesh::structured_box(dim, {1, 1, 1}, {2, 2, 2}), dim == 2 ? 1 : 0);
+  materials::MooneyRivlin law(1.0, 0.1, 100.0, materials::MooneyRivlin::Form::Mixed);
+  const std::vector<const materials::Material*> mats(m.n_cells(), &law);
+  const fem::FieldSpace space(m, BasisKind::P2Hierarchical, std::vector<char>(m.n_vertices(), 1));
+  ASSERT_EQ(space.n_pressure_dofs(), m.n_vertices());
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> dist(-1, 1);
+  std::vector<double> u(space.n_dofs()), v(space.n_dofs());
+  for (auto& x : u) x = 0.03 * dist(rng);
+  for (auto& x : v) x = dist(rng);
+  fem::StiffnessMatrix stiffness(PETSC_COMM_WORLD, space);
+  EXPECT_TRUE(stiffness.direct_insertion());
+  stiffness.begin_assembly();
+  fem::assemble_internal(space, mats, u, nullptr, &stiffness);
+  stiffness.end_assembly();
+  PetscBool symmetric = PETSC_FALSE;
+  MatIsSymmetric(stiffness.mat(), 1e-10, &symmetric);
+  EXPECT_TRUE(symmetric);
+  Vec vv, Kv;
+  MatCreateVecs(stiffness.mat(), &vv, &Kv);
+  PetscScalar* a;
+  VecGetArray(vv, &a);
+  std::copy(v.begin(), v.end(), a);
+  VecRestoreArray(vv, &a);
+  MatMult(stiffness.mat(), vv, Kv);
+  const double h = 1e-6;
+  std::vector<double> up = u, um = u, rp(space.n_dofs(), 0.0), rm(space.n_dofs(), 0.0);
+  for (size_t i = 0; i < u.size(); ++i) up[i] += h * v[i], um[i] -= h * v[i];
+  fem::assemble_internal(space, mats, up, &rp, nullptr);
+  fem::assemble_internal(space, mats, um, &rm, nullptr);
+  const PetscScalar* kv;
+  VecGetArrayRead(Kv, &kv);
+  double diff = 0, norm = 0, pressure_norm = 0;
+  for (size_t i = 0; i < u.size(); ++i) {
+    const double fd = (rp[i] - rm[i]) / (2 * h);
+    diff += (kv[i] - fd) * (kv[i] - fd);
+    norm += kv[i] * kv[i];
+    if (static_cast<int>(i) >= space.pressure_block().first) pressure_norm += kv[i] * kv[i];
+  }
+  VecRestoreArrayRead(Kv, &kv);
+  EXPECT_LT(std::sqrt(diff / norm), 1e-6);
+  EXPECT_GT(pressure_norm, 0);  // the pressure rows take part
+  VecDestroy(&vv);
+  VecDestroy(&Kv);
+}
+
+INSTANTIATE_TEST_SUITE_P(Dimensions, MixedTangent, ::testing::Values(2, 3));
+
 // Uniaxial stretch with rollers: the exact solution is homogeneous, F = diag(1+d, s, s)
 // (3D) or diag(1+d, s) with F33 = 1 (plane strain), where the lateral stretch s makes the
 // lateral stress vanish. It lies in the discrete space, so Newton must find it to
@@ -113,7 +167,7 @@ TEST_P(HomogeneousStretch, ExactToRoundOff) {
   const auto [dim, kind] = GetParam();
   const std::array<double, 3> L{1.0, 0.8, 0.6};
   const mesh::Mesh m = mesh::generate_box(dim, L, 0.3);  // unstructured
-  const fem::DisplacementSpace space(m, kind);
+  const fem::FieldSpace space(m, kind);
   materials::NeoHookean law(100.0, 0.3);
   const double d = 0.25;
   ElasticityProblem p;
@@ -166,7 +220,7 @@ INSTANTIATE_TEST_SUITE_P(All, HomogeneousStretch,
 // Shared set-up: a plane-strain cantilever loaded by an end shear traction (large rotation).
 struct Cantilever {
   mesh::Mesh m = mesh::refine(mesh::structured_box(2, {10, 1, 1}, {20, 2, 1}), 1);
-  fem::DisplacementSpace space{m, BasisKind::P2Hierarchical};
+  fem::FieldSpace space{m, BasisKind::P2Hierarchical};
   materials::NeoHookean law{1000.0, 0.3};
   ElasticityProblem p;
   Cantilever() {

@@ -1,11 +1,16 @@
-#include "fem/displacement_space.hpp"
+#include "fem/field_space.hpp"
 
 namespace stiction::fem {
 
-DisplacementSpace::DisplacementSpace(const mesh::Mesh& mesh, BasisKind kind)
-    : mesh_(&mesh), kind_(kind), topo_(mesh::build_edges(mesh)) {}
+FieldSpace::FieldSpace(const mesh::Mesh& mesh, BasisKind kind, const std::vector<char>& vertex_has_pressure)
+    : mesh_(&mesh), kind_(kind), topo_(mesh::build_edges(mesh)) {
+  if (vertex_has_pressure.empty()) return;
+  pressure_index_.assign(mesh.n_vertices(), -1);
+  for (int v = 0; v < mesh.n_vertices(); ++v)
+    if (vertex_has_pressure[v]) pressure_index_[v] = n_pressure_++;
+}
 
-void DisplacementSpace::cell_nodes(int cell, int* nodes) const {
+void FieldSpace::cell_nodes(int cell, int* nodes) const {
   const int d = dim(), nv = d + 1;
   const int* v = mesh_->cell(cell);
   for (int k = 0; k < nv; ++k) nodes[k] = v[k];
@@ -14,7 +19,7 @@ void DisplacementSpace::cell_nodes(int cell, int* nodes) const {
   for (int e = 0; e < ne; ++e) nodes[nv + e] = n_vertices() + topo_.cell_edges[static_cast<size_t>(cell) * ne + e];
 }
 
-void DisplacementSpace::facet_nodes(int facet, int* nodes) const {
+void FieldSpace::facet_nodes(int facet, int* nodes) const {
   const int d = dim();
   const int* v = mesh_->facet(facet);
   for (int k = 0; k < d; ++k) nodes[k] = v[k];
@@ -23,7 +28,7 @@ void DisplacementSpace::facet_nodes(int facet, int* nodes) const {
   for (int e = 0; e < ne; ++e) nodes[d + e] = n_vertices() + topo_.facet_edges[static_cast<size_t>(facet) * ne + e];
 }
 
-void DisplacementSpace::node_position(int node, double* X) const {
+void FieldSpace::node_position(int node, double* X) const {
   const int d = dim();
   if (is_vertex_node(node)) {
     for (int k = 0; k < d; ++k) X[k] = mesh_->vertex(node)[k];
@@ -33,14 +38,14 @@ void DisplacementSpace::node_position(int node, double* X) const {
   for (int k = 0; k < d; ++k) X[k] = 0.5 * (mesh_->vertex(a)[k] + mesh_->vertex(b)[k]);
 }
 
-void DisplacementSpace::interpolate(const VectorField& g, std::vector<double>& coefs) const {
+void FieldSpace::interpolate(const VectorField& g, std::vector<double>& coefs) const {
   const int d = dim();
   coefs.assign(n_dofs(), 0.0);
   double X[3];
   for (int n = 0; n < n_nodes(); ++n) {
     node_position(n, X);
     g(X, &coefs[static_cast<size_t>(n) * d]);
-  }
+  }  // pressure entries stay zero
   if (kind_ != BasisKind::P2Hierarchical) return;
   for (int e = 0; e < topo_.n_edges(); ++e) {
     const auto [a, b] = topo_.edges[e];
@@ -49,7 +54,7 @@ void DisplacementSpace::interpolate(const VectorField& g, std::vector<double>& c
   }
 }
 
-void DisplacementSpace::interpolate_node(const VectorField& g, int node, double* out) const {
+void FieldSpace::interpolate_node(const VectorField& g, int node, double* out) const {
   double X[3];
   node_position(node, X);
   g(X, out);
@@ -61,8 +66,17 @@ void DisplacementSpace::interpolate_node(const VectorField& g, int node, double*
   for (int k = 0; k < dim(); ++k) out[k] -= 0.5 * (ga[k] + gb[k]);
 }
 
-std::vector<double> DisplacementSpace::nodal_values(const std::vector<double>& coefs) const {
-  std::vector<double> out = coefs;
+std::vector<double> FieldSpace::nodal_pressure(const std::vector<double>& coefs) const {
+  std::vector<double> out(n_nodes(), 0.0);
+  for (int v = 0; v < n_vertices(); ++v)
+    if (pressure_dof(v) >= 0) out[v] = coefs[pressure_dof(v)];
+  if (is_quadratic(kind_))
+    for (int e = 0; e < topo_.n_edges(); ++e) out[n_vertices() + e] = 0.5 * (out[topo_.edges[e][0]] + out[topo_.edges[e][1]]);
+  return out;
+}
+
+std::vector<double> FieldSpace::nodal_values(const std::vector<double>& coefs) const {
+  std::vector<double> out(coefs.begin(), coefs.begin() + n_displacement_dofs());
   if (kind_ != BasisKind::P2Hierarchical) return out;
   const int d = dim();
   for (int e = 0; e < topo_.n_edges(); ++e) {
