@@ -37,7 +37,7 @@ PetscErrorCode shell_apply(PC pc, Vec r, Vec x) {
   void* ctx;
   PetscCall(PCShellGetContext(pc, &ctx));
   try {
-    static_cast<const HierarchicalPreconditioner*>(ctx)->apply(r, x);
+    static_cast<const ShellPreconditioner*>(ctx)->apply(r, x);
   } catch (const std::exception& e) {
     SETERRQ(PetscObjectComm(reinterpret_cast<PetscObject>(pc)), PETSC_ERR_LIB, "%s", e.what());
   }
@@ -123,11 +123,11 @@ void HierarchicalPreconditioner::apply(Vec r, Vec x) const {
   STICTION_PETSC(VecRestoreSubVector(r, is_l_, &rl));
 }
 
-void use_as_shell(PC pc, HierarchicalPreconditioner& hp) {
+void use_as_shell(PC pc, const ShellPreconditioner& p, const char* name) {
   STICTION_PETSC(PCSetType(pc, PCSHELL));
-  STICTION_PETSC(PCShellSetContext(pc, &hp));
+  STICTION_PETSC(PCShellSetContext(pc, const_cast<ShellPreconditioner*>(&p)));
   STICTION_PETSC(PCShellSetApply(pc, shell_apply));
-  STICTION_PETSC(PCShellSetName(pc, "HP (10): A_ll^-1 then S~^-1 on u_q; see the ll_ and qq_ solvers below"));
+  STICTION_PETSC(PCShellSetName(pc, name));
 }
 
 }  // namespace stiction::solvers

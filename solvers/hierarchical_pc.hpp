@@ -20,18 +20,29 @@
 
 namespace stiction::solvers {
 
-enum class SchurForm { Lower, Full };
+enum class SchurForm { Lower, Upper, Full };
 
-class HierarchicalPreconditioner {
+// A preconditioner applied through a PETSc PCSHELL (HP, MHP, and the contact level).
+class ShellPreconditioner {
+public:
+  virtual ~ShellPreconditioner() = default;
+  virtual void apply(Vec r, Vec x) const = 0;  // x = P^-1 r
+};
+
+// Installs p as the PCSHELL of pc under a descriptive name (p must outlive the PC).
+void use_as_shell(PC pc, const ShellPreconditioner& p, const char* name);
+
+class HierarchicalPreconditioner final : public ShellPreconditioner {
 public:
   HierarchicalPreconditioner(MPI_Comm comm, const std::string& prefix);
 
   // Extracts the blocks of A and sets up both sub-solvers. near_null_space (may be null)
   // is restricted to u_l and handed to the A_ll solver; block_size (dim) reaches AMG.
   void setup(Mat A, IS linear, IS quadratic, MatNullSpace near_null_space, int block_size);
-  void apply(Vec r, Vec x) const;
+  // Writes x's u_l and u_q parts only (other blocks of x are left as they are).
+  void apply(Vec r, Vec x) const override;
 
-  void set_form(SchurForm form) { form_ = form; }
+  void set_form(SchurForm form) { form_ = form; }  // Lower (default) or Full
   SchurForm form() const { return form_; }
   // Replaces the operator of the quadratic-block solver (default A_qq), e.g. by the exact
   // Schur complement in verification tests. Call after setup().
@@ -48,8 +59,5 @@ private:
   PetscVec work_q_, work_l_, work_l2_;
   SchurForm form_ = SchurForm::Lower;
 };
-
-// Installs an HP as the PCSHELL of pc (the object must outlive the PC).
-void use_as_shell(PC pc, HierarchicalPreconditioner& hp);
 
 }  // namespace stiction::solvers

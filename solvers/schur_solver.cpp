@@ -16,8 +16,15 @@ void SchurSolver::configure(const nonlinear::NewtonSystem& system) {
     throw Error(name() + " needs a P2 displacement field split into u_l and u_q (scene basis p2-hierarchical)");
   PC pc;
   STICTION_PETSC(KSPGetPC(ksp(), &pc));
-  use_as_shell(pc, hp_);
   hp_.setup(system.matrix, linear->is, quadratic->is, system.near_null_space, linear->block_size);
+  const auto* pressure = system.field("p");
+  if (!pressure) {
+    use_as_shell(pc, hp_, "HP (10): A_ll^-1 then S~^-1 on u_q; the ll_ and qq_ solvers are listed below");
+    return;
+  }
+  if (!mhp_) mhp_ = std::make_unique<MixedPreconditioner>(system.comm, options_prefix(name()), hp_);
+  mhp_->setup(system.matrix, pressure->is, system.pressure_mass, system.pressure_schur_scale);
+  use_as_shell(pc, *mhp_, "MHP (11): alpha M_p on p (pp_ solver), then HP (10) on u (ll_ and qq_ solvers)");
 }
 
 void SchurSolver::collect_setup_figures(std::map<std::string, double>& extra) const {
@@ -27,8 +34,10 @@ void SchurSolver::collect_setup_figures(std::map<std::string, double>& extra) co
 }
 
 std::string SchurSolver::describe() const {
-  return KspSolver::describe() + "\nLinear block A_ll solver:\n" + full_view(hp_.linear_solver()) +
-         "\nQuadratic block solver:\n" + full_view(hp_.quadratic_solver());
+  std::string text = KspSolver::describe() + "\nLinear block A_ll solver:\n" + full_view(hp_.linear_solver()) +
+                     "\nQuadratic block solver:\n" + full_view(hp_.quadratic_solver());
+  if (mhp_) text += "\nPressure block (alpha M_p) solver:\n" + full_view(mhp_->pressure_solver());
+  return text;
 }
 
 std::unique_ptr<nonlinear::LinearSolver> make_schur_lu(MPI_Comm comm) {

@@ -1,9 +1,13 @@
 #pragma once
-// The paper's nested Schur preconditioner in GMRES. Today: HP (10) on [u_l | u_q]; the
-// mixed (MHP, (11)) and contact (global, (33)) levels will wrap it. schur-lu and schur-amg
-// are this class with different option files (A_ll^-1 by MUMPS or by one BoomerAMG cycle).
+// The paper's nested Schur preconditioner in GMRES: HP (10) on [u_l | u_q], wrapped by MHP
+// (11) when the system has a pressure block (the contact level (33) will wrap these).
+// schur-lu and schur-amg are this class with different option files (A_ll^-1 by MUMPS or
+// by one BoomerAMG cycle).
+#include <memory>
+
 #include "hierarchical_pc.hpp"
 #include "ksp_solver.hpp"
+#include "mixed_pc.hpp"
 
 namespace stiction::solvers {
 
@@ -12,6 +16,7 @@ public:
   SchurSolver(const std::string& name, MPI_Comm comm);
   std::string describe() const override;
   HierarchicalPreconditioner& hierarchical() { return hp_; }
+  MixedPreconditioner* mixed() { return mhp_.get(); }  // null without a pressure block
 
 protected:
   void configure(const nonlinear::NewtonSystem& system) override;
@@ -20,6 +25,7 @@ protected:
 
 private:
   HierarchicalPreconditioner hp_;
+  std::unique_ptr<MixedPreconditioner> mhp_;
 };
 
 }  // namespace stiction::solvers

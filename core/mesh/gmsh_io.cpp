@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <unordered_map>
 
 #include "common/error.hpp"
@@ -140,6 +141,13 @@ Mesh extract_current_model(const std::string& what) {
   return m;
 }
 
+void set_size_and_generate(int dim, double h) {
+  gmsh::option::setNumber("Mesh.MeshSizeMin", h);
+  gmsh::option::setNumber("Mesh.MeshSizeMax", h);
+  gmsh::option::setNumber("Mesh.Algorithm3D", 1);  // Delaunay: fast and deterministic
+  gmsh::model::mesh::generate(dim);
+}
+
 // Adds the OCC box/rectangle with named physical groups, tagged by bounding box position.
 void build_box_model(int dim, const std::array<double, 3>& L, double h) {
   if (dim == 3)
@@ -170,10 +178,64 @@ void build_box_model(int dim, const std::array<double, 3>& L, double h) {
       gmsh::model::addPhysicalGroup(dim - 1, on_plane, tag);
       gmsh::model::setPhysicalName(dim - 1, tag, names[tag - 1]);
     }
-  gmsh::option::setNumber("Mesh.MeshSizeMin", h);
-  gmsh::option::setNumber("Mesh.MeshSizeMax", h);
-  gmsh::option::setNumber("Mesh.Algorithm3D", 1);  // Delaunay: fast and deterministic
-  gmsh::model::mesh::generate(dim);
+  set_size_and_generate(dim, h);
+}
+
+void build_polygon_model(const std::vector<double>& xy, const std::vector<std::string>& names, double h,
+                         double thickness) {
+  const int n = static_cast<int>(xy.size() / 2);
+  std::vector<int> points, lines;
+  for (int i = 0; i < n; ++i) points.push_back(gmsh::model::occ::addPoint(xy[2 * i], xy[2 * i + 1], 0));
+  for (int i = 0; i < n; ++i) lines.push_back(gmsh::model::occ::addLine(points[i], points[(i + 1) % n]));
+  const int surface = gmsh::model::occ::addPlaneSurface({gmsh::model::occ::addCurveLoop(lines)});
+  const int dim = thickness > 0 ? 3 : 2;
+  std::vector<std::vector<int>> side_entities(n);
+  std::vector<int> front, back, body;
+  if (dim == 2) {
+    gmsh::model::occ::synchronize();
+    for (int i = 0; i < n; ++i) side_entities[i] = {lines[i]};
+    body = {surface};
+  } else {
+    gmsh::vectorpair out;
+    gmsh::model::occ::extrude({{2, surface}}, 0, 0, thickness, out);
+    gmsh::model::occ::synchronize();
+    front = {surface};
+    // Lateral faces: match each to the side whose midpoint is nearest its centre of mass
+    // (the order Gmsh returns them in is not part of its API).
+    for (auto [d, tag] : out) {
+      if (d == 3) body.push_back(tag);
+      if (d != 2) continue;
+      double cx, cy, cz;
+      gmsh::model::occ::getCenterOfMass(d, tag, cx, cy, cz);
+      if (std::abs(cz - thickness) < 1e-9 * std::max(1.0, thickness)) {
+        back.push_back(tag);
+        continue;
+      }
+      int best = 0;
+      double best_d = INFINITY;
+      for (int i = 0; i < n; ++i) {
+        const double mx = 0.5 * (xy[2 * i] + xy[2 * ((i + 1) % n)]), my = 0.5 * (xy[2 * i + 1] + xy[2 * ((i + 1) % n) + 1]);
+        const double dist = std::hypot(cx - mx, cy - my);
+        if (dist < best_d) best_d = dist, best = i;
+      }
+      side_entities[best].push_back(tag);
+    }
+  }
+  gmsh::model::addPhysicalGroup(dim, body, 1);
+  gmsh::model::setPhysicalName(dim, 1, "body");
+  int tag = 0;
+  auto add_group = [&](const std::vector<int>& entities, const std::string& name) {
+    if (entities.empty()) return;
+    gmsh::model::addPhysicalGroup(dim - 1, entities, ++tag);
+    gmsh::model::setPhysicalName(dim - 1, tag, name);
+  };
+  // Sides with the same name form one boundary.
+  std::map<std::string, std::vector<int>> by_name;
+  for (int i = 0; i < n; ++i) by_name[names[i]].insert(by_name[names[i]].end(), side_entities[i].begin(), side_entities[i].end());
+  for (const auto& [name, entities] : by_name) add_group(entities, name);
+  add_group(front, "front");
+  add_group(back, "back");
+  set_size_and_generate(dim, h);
 }
 
 void check_box_args(int dim, const std::array<double, 3>& L, double h) {
@@ -200,6 +262,21 @@ Mesh generate_box(int dim, const std::array<double, 3>& L, double h) {
     gmsh_begin();
     build_box_model(dim, L, h);
     return extract_current_model("generated box");
+  });
+}
+
+Mesh generate_polygon(const std::vector<double>& xy, const std::vector<std::string>& names, double h,
+                      double thickness) {
+  if (xy.size() < 6 || xy.size() % 2) throw Error("polygon generator: give at least 3 points as x, y pairs");
+  if (names.size() != xy.size() / 2)
+    throw Error(fmt::format("polygon generator: {} points need {} side names (side i joins point i to i+1)",
+                            xy.size() / 2, xy.size() / 2));
+  if (!(h > 0)) throw Error("polygon generator: the target size h must be positive");
+  if (thickness < 0) throw Error("polygon generator: thickness must be positive (or 0 for 2D)");
+  return with_gmsh("polygon generator", [&] {
+    gmsh_begin();
+    build_polygon_model(xy, names, h, thickness);
+    return extract_current_model("generated polygon");
   });
 }
 

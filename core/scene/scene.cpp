@@ -39,9 +39,12 @@ struct Schemas {
                   std::string("mixed"), {"mixed", "displacement"}}}};
     mesh = {"mesh",
             {{"file", VT::String, "Gmsh .msh file (version 4), relative to the scene file", false},
-             {"generator", VT::String, "built-in geometry instead of a file", false, {}, {"box", "structured-box"}},
+             {"generator", VT::String, "built-in geometry instead of a file", false, {}, {"box", "structured-box", "polygon"}},
+             {"points", VT::FloatArray, "'polygon': corners x0, y0, x1, y1, ... counter-clockwise", false},
+             {"sides", VT::StringArray, "'polygon': boundary name of each side (side i joins point i to i+1)", false},
+             {"thickness", VT::Float, "'polygon': extrusion along z for a 3D body (faces 'front', 'back')", false},
              {"size", VT::FloatArray, "box side lengths [lx, ly] (2D) or [lx, ly, lz] (3D)", false},
-             {"h", VT::Float, "target element size for the 'box' generator (Gmsh)", false},
+             {"h", VT::Float, "target element size for the 'box' and 'polygon' generators (Gmsh)", false},
              {"cells", VT::FloatArray, "cells per side for 'structured-box'", false}}};
     body = {"body",
             {{"name", VT::String, "body name (prefix of its boundary names: 'block/top')", true},
@@ -138,6 +141,11 @@ mesh::Mesh make_body_mesh(const toml::table& t, const std::string& file, const s
     return mesh::read_msh(p.string());
   }
   const std::string gen = get_string(t, S, "generator");
+  if (gen == "polygon") {
+    if (!t.contains("h")) throw Error(fmt::format("{}: body '{}': the 'polygon' generator needs mesh.h", file, body));
+    return mesh::generate_polygon(get_floats(t, "points"), get_strings(t, "sides"), get_float(t, S, "h"),
+                                  t.contains("thickness") ? get_float(t, S, "thickness") : 0.0);
+  }
   const auto size = get_floats(t, "size");
   if (size.size() != 2 && size.size() != 3)
     throw Error(fmt::format("{}: body '{}': mesh.size needs 2 (2D) or 3 (3D) lengths", file, body));

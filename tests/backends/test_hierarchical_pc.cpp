@@ -56,7 +56,7 @@ int gmres_iterations(const nonlinear::NewtonSystem& sys, HierarchicalPreconditio
   KSPSetPCSide(ksp, PC_RIGHT);
   KSPSetTolerances(ksp, 1e-10, 1e-50, 1e10, 50);
   KSPGetPC(ksp, &pc);
-  use_as_shell(pc, hp);
+  use_as_shell(pc, hp, "HP under test");
   MatCreateVecs(sys.matrix, &x, &r);
   KSPSolve(ksp, sys.rhs, x);
   PetscInt its;

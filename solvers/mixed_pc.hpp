@@ -1,0 +1,41 @@
+#pragma once
+// MHP, the paper's mixed preconditioner (11), on the displacement-pressure system
+//
+//   M = [A  Bp^T; Bp  C],   C = -(1/kappa) M_p,   S_p = C - Bp A^-1 Bp^T,
+//
+// with A^-1 replaced by HP (10) and S_p by alpha M_p, alpha = -(1/mu10 + 1/kappa) (same
+// sign as S_p), applied with one SSOR sweep.
+//   Form Upper, (11):  y_p = S~^-1 r_p,  x_u = HP (r_u - Bp^T y_p),  x_p = y_p
+//   Form Full, (8):    y_u = HP r_u,  x_p = S~^-1 (r_p - Bp y_u),  x_u = HP (r_u - Bp^T x_p)
+// With exact inner solves (HP exact, S~ = S_p) Full is the exact inverse (tests/backends).
+// Layout: the displacement unknowns [u_l | u_q] come first, the pressure block last.
+#include <string>
+
+#include "hierarchical_pc.hpp"
+
+namespace stiction::solvers {
+
+class MixedPreconditioner final : public ShellPreconditioner {
+public:
+  MixedPreconditioner(MPI_Comm comm, const std::string& prefix, const HierarchicalPreconditioner& hp);
+
+  // A: the whole mixed matrix; HP must already be set up on it. S~ = alpha M_p.
+  void setup(Mat A, IS pressure, Mat pressure_mass, double alpha);
+  void apply(Vec r, Vec x) const override;
+
+  void set_form(SchurForm form) { form_ = form; }  // Upper (default) or Full
+  // Replaces the pressure Schur approximation (e.g. the exact S_p in tests); after setup().
+  void set_pressure_operator(Mat S);
+  KSP pressure_solver() const { return ksp_pp_; }
+  Mat coupling(bool transpose) const { return transpose ? A_up_.get() : A_pu_.get(); }  // Bp^T : Bp
+
+private:
+  const HierarchicalPreconditioner& hp_;
+  PetscKSP ksp_pp_;
+  PetscIS is_u_, is_p_;
+  PetscMat A_up_, A_pu_, S_;
+  PetscVec work_, work2_, work_p_, work_u_;
+  SchurForm form_ = SchurForm::Upper;
+};
+
+}  // namespace stiction::solvers
