@@ -100,3 +100,31 @@ TEST(CookPressure, NoCheckerboard) {
 
 }  // namespace
 }  // namespace stiction
+
+namespace stiction {
+namespace {
+
+// MHP robustness (schur-lu: LU on A_ll, SSOR on A_qq and alpha M_p), range checks on the
+// mean Krylov iterations per Newton step: at most 2x from kappa/mu10 = 1e2 to 1e5, at most
+// 1.5x from mesh level 0 to level 2.
+double krylov_per_newton_step(double kappa, int level) {
+  const auto solved = test::solve_scene_text(cook(kappa, "mixed"), level, "schur-lu");
+  EXPECT_TRUE(solved.converged());
+  return solved.mean_krylov_per_newton_step();
+}
+
+TEST(MixedPreconditionerRobustness, BulkModulus) {
+  const double low = krylov_per_newton_step(1e2, 1), high = krylov_per_newton_step(1e5, 1);
+  std::printf("schur-lu, level 1: %.1f Krylov iterations per Newton step at kappa/mu10 1e2, %.1f at 1e5\n", low, high);
+  EXPECT_LE(high, 2.0 * low);
+}
+
+TEST(MixedPreconditionerRobustness, MeshLevel) {
+  const double coarse = krylov_per_newton_step(1e3, 0), fine = krylov_per_newton_step(1e3, 2);
+  std::printf("schur-lu, kappa/mu10 1e3: %.1f Krylov iterations per Newton step at level 0, %.1f at level 2\n", coarse,
+              fine);
+  EXPECT_LE(fine, 1.5 * coarse);
+}
+
+}  // namespace
+}  // namespace stiction

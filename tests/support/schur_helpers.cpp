@@ -1,0 +1,60 @@
+#include "support/schur_helpers.hpp"
+
+#include <string>
+
+namespace stiction::test {
+
+Mat dense_schur_complement(Mat A, Mat B, Mat C, Mat D) {
+  Mat F, Bd, X, CX, S;
+  MatFactorInfo info;
+  MatFactorInfoInitialize(&info);
+  IS rperm, cperm;
+  MatGetOrdering(A, MATORDERINGND, &rperm, &cperm);
+  MatGetFactor(A, MATSOLVERPETSC, MAT_FACTOR_LU, &F);
+  MatLUFactorSymbolic(F, A, rperm, cperm, &info);
+  MatLUFactorNumeric(F, A, &info);
+  MatConvert(B, MATSEQDENSE, MAT_INITIAL_MATRIX, &Bd);
+  MatDuplicate(Bd, MAT_DO_NOT_COPY_VALUES, &X);
+  MatMatSolve(F, Bd, X);
+  MatMatMult(C, X, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &CX);
+  MatConvert(D, MATSEQDENSE, MAT_INITIAL_MATRIX, &S);
+  MatAXPY(S, -1.0, CX, SAME_NONZERO_PATTERN);
+  for (Mat* m : {&F, &Bd, &X, &CX}) MatDestroy(m);
+  ISDestroy(&rperm);
+  ISDestroy(&cperm);
+  return S;
+}
+
+int gmres_iterations(const nonlinear::NewtonSystem& sys, const solvers::ShellPreconditioner& p, double* residual) {
+  KSP ksp;
+  PC pc;
+  Vec x, r;
+  KSPCreate(PETSC_COMM_WORLD, &ksp);
+  KSPSetOperators(ksp, sys.matrix, sys.matrix);
+  KSPSetType(ksp, KSPGMRES);
+  KSPSetPCSide(ksp, PC_RIGHT);
+  KSPSetTolerances(ksp, 1e-10, 1e-50, 1e10, 200);
+  KSPGMRESSetRestart(ksp, 200);
+  KSPGetPC(ksp, &pc);
+  solvers::use_as_shell(pc, p, "preconditioner under test");
+  MatCreateVecs(sys.matrix, &x, &r);
+  KSPSolve(ksp, sys.rhs, x);
+  PetscInt its;
+  KSPGetIterationNumber(ksp, &its);
+  PetscReal bnorm, rnorm;
+  MatMult(sys.matrix, x, r);
+  VecAYPX(r, -1.0, sys.rhs);
+  VecNorm(r, NORM_2, &rnorm);
+  VecNorm(sys.rhs, NORM_2, &bnorm);
+  *residual = rnorm / bnorm;
+  VecDestroy(&x);
+  VecDestroy(&r);
+  KSPDestroy(&ksp);
+  return static_cast<int>(its);
+}
+
+void set_options(const std::string& prefix, std::initializer_list<std::pair<const char*, const char*>> options) {
+  for (const auto& [key, value] : options) PetscOptionsSetValue(nullptr, ("-" + prefix + key).c_str(), value);
+}
+
+}  // namespace stiction::test

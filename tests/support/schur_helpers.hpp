@@ -1,0 +1,20 @@
+#pragma once
+// Exact block inverses for preconditioner verification on small systems.
+#include <petscksp.h>
+
+#include "hierarchical_pc.hpp"
+#include "nonlinear/newton_system.hpp"
+
+namespace stiction::test {
+
+// Dense S = D - C A^-1 B (A sparse, factorised by PETSc's LU).
+Mat dense_schur_complement(Mat A, Mat B, Mat C, Mat D);
+
+// GMRES (right preconditioned, rtol 1e-10) on the system with p as shell preconditioner;
+// returns the iterations and the true relative residual.
+int gmres_iterations(const nonlinear::NewtonSystem& sys, const solvers::ShellPreconditioner& p, double* residual);
+
+// Sets "-<prefix><key> value" for each pair (nullptr value for flags).
+void set_options(const std::string& prefix, std::initializer_list<std::pair<const char*, const char*>> options);
+
+}  // namespace stiction::test
