@@ -38,7 +38,8 @@ TEST(IterationBaseline, Level0SweepDoesNotRegress) {
     const std::string key = run.at("scene") + "/" + run.at("solver");
     SCOPED_TRACE(key);
     ASSERT_TRUE(base.count(key)) << "no baseline row: add it with scripts/update-iteration-baseline.sh";
-    ASSERT_EQ(run.at("status"), "ok") << run.at("detail");
+    ASSERT_EQ(run.at("status"), base[key].at("status")) << run.at("detail");
+    if (run.at("status") != "ok") continue;  // a stable, recorded failure: no counts to compare
     for (const char* what : {"newton_iterations", "krylov_iterations"}) {
       const double measured = std::stod(run.at(what)), expected = std::stod(base[key].at(what));
       EXPECT_TRUE(within_allowance(measured, expected)) << what << ": " << measured << " vs baseline " << expected;
