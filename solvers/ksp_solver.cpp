@@ -81,7 +81,14 @@ void KspSolver::setup(const nonlinear::NewtonSystem& system) {
   STICTION_PETSC(KSPSetOperators(ksp_, system.matrix, system.matrix));
   configure(system);
   STICTION_PETSC(KSPSetFromOptions(ksp_));
-  STICTION_PETSC(KSPSetUp(ksp_));
+  // A failed factorisation or preconditioner set-up (out of memory, zero pivot) is a
+  // result of this backend on this system, not a program error: solve() reports it.
+  setup_failure_.clear();
+  try {
+    STICTION_PETSC(KSPSetUp(ksp_));
+  } catch (const Error& e) {
+    setup_failure_ = e.what();
+  }
   if (capture) setup_output_ = capture->text();
   setup_seconds_ = seconds_since(t0);
   setup_extra_.clear();
@@ -102,6 +109,11 @@ nonlinear::LinearSolveStats KspSolver::solve(const nonlinear::NewtonSystem& syst
   nonlinear::LinearSolveStats s;
   s.setup_seconds = setup_seconds_;
   s.extra = setup_extra_;
+  if (!setup_failure_.empty()) {
+    const auto colon = setup_failure_.rfind(": ");
+    s.reason = "PC_SETUP_FAILED (" + setup_failure_.substr(colon == std::string::npos ? 0 : colon + 2) + ")";
+    return s;
+  }
   PetscReal bnorm, rnorm;
   STICTION_PETSC(VecNorm(system.rhs, NORM_2, &bnorm));
   const auto t0 = std::chrono::steady_clock::now();

@@ -41,6 +41,7 @@ private:
   PetscKSP ksp_;
   double setup_seconds_ = 0;
   std::string setup_output_;
+  std::string setup_failure_;  // PETSc's message when the set-up failed (e.g. factorisation)
   std::map<std::string, double> setup_extra_;
 };
 

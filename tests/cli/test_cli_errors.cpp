@@ -286,3 +286,10 @@ TEST_F(StictionCli, RecordThenReplayWithAnotherBackend) {
   EXPECT_EQ(rep.exit_code, 0) << rep.err;
   EXPECT_TRUE(fs::exists(dir_ / "replay.csv"));
 }
+
+TEST_F(StictionCli, FailedFactorisationIsANamedNumericalFailure) {
+  // A factorisation that cannot be set up (here: a solver package PETSc does not have)
+  // is a result of the backend: Newton stops with DIVERGED_LINEAR_SOLVE, exit 3.
+  expect_error(solve("cantilever-2d", {"-lu_mumps_pc_factor_mat_solver_type", "no_such_package"}), 3,
+               {"DIVERGED_LINEAR_SOLVE", "PC_SETUP_FAILED", "no_such_package"});
+}
