@@ -9,7 +9,6 @@
 // the process after assembling: mesh, space, matrix and work vectors).
 #include <benchmark/benchmark.h>
 
-#include <fstream>
 #include <map>
 #include <memory>
 #include <string>
@@ -17,24 +16,11 @@
 #include "builtin_scenes.hpp"
 #include "common/petsc.hpp"
 #include "fem/elasticity_assembly.hpp"
+#include "run_metrics.hpp"
 
 namespace {
 
 using namespace stiction;
-
-double peak_rss_mb() {
-  std::ifstream status("/proc/self/status");
-  std::string key;
-  while (status >> key) {
-    if (key == "VmHWM:") {
-      double kb;
-      status >> kb;
-      return kb / 1024.0;
-    }
-    std::getline(status, key);
-  }
-  return 0;
-}
 
 // One scene per level, built once (Gmsh + refinement are not what is measured).
 scene::Scene& block(int level) {
@@ -78,7 +64,7 @@ void BM_ResidualAndTangent(benchmark::State& state) {
   state.counters["cells/s"] = benchmark::Counter(s.mesh.n_cells(), benchmark::Counter::kIsIterationInvariantRate);
   state.counters["MDof/s"] = benchmark::Counter(space.n_dofs() * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["matrix_MB"] = matrix_mb(A);
-  state.counters["peak_RSS_MB"] = peak_rss_mb();
+  state.counters["peak_RSS_MB"] = harness::peak_rss_mb();
 }
 BENCHMARK(BM_ResidualAndTangent)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 

@@ -33,9 +33,12 @@ struct Level0System {
   }
 };
 
+// Owned here and released before PETSc finalises (a static would be destroyed after).
+std::unique_ptr<Level0System> g_level0;
+
 const nonlinear::NewtonSystem& level0() {
-  static Level0System s;
-  return s.newton->system();
+  if (!g_level0) g_level0 = std::make_unique<Level0System>();
+  return g_level0->newton->system();
 }
 
 void BM_Setup(benchmark::State& state, const std::string& backend) {
@@ -85,5 +88,6 @@ int main(int argc, char** argv) {
   register_all();
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
+  g_level0.reset();
   return 0;
 }

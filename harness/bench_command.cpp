@@ -164,6 +164,7 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
     for (const auto& s : solvers_list)
       header += fmt::format("# backend {} options: {}\n", s, solvers::compact_options(s));
     for (const auto& opt : o.petsc_options) header += "# petsc option: " + opt + "\n";
+    header += "# newton forcing: " + (o.forcing.empty() ? std::string("as each scene sets it") : o.forcing) + "\n";
     append_durably(runs_csv, header + kRunColumns);
     append_durably(out + "/steps.csv", header + kStepColumns);
   }
@@ -187,6 +188,7 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
     fs::create_directories(run_dir, ec);
     std::vector<std::string> argv{exe, "solve", run.scene, "--level", std::to_string(run.level), "--solver", run.solver,
                                   "--out", run_dir, "--quiet", "--no-vtu", "--metrics", run_dir + "/metrics.toml"};
+    if (!o.forcing.empty()) argv.insert(argv.end(), {"--forcing", o.forcing});
     for (size_t k = 0; k < o.petsc_options.size(); ++k)
       if (o.petsc_options[k].rfind("-" + solvers::options_prefix(run.solver), 0) == 0) {
         std::istringstream words(o.petsc_options[k]);

@@ -20,6 +20,7 @@ struct BenchOptions {
   double time_limit_seconds = 3600;
   double memory_limit_mb = 0;        // 0: 90% of the machine's memory
   std::vector<std::string> petsc_options;  // "-prefix_key value" pairs, forwarded by prefix
+  std::string forcing;                     // Newton forcing for every run (empty: the scene's)
 };
 
 void run_bench(const BenchOptions& options, const RunInfo& info);

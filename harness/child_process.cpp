@@ -14,26 +14,13 @@
 #include <thread>
 
 #include "common/error.hpp"
+#include "run_metrics.hpp"
 
 extern char** environ;
 
 namespace stiction::harness {
 
 namespace {
-
-double resident_mb(pid_t pid) {
-  std::ifstream status(fmt::format("/proc/{}/status", pid));
-  std::string key;
-  while (status >> key) {
-    if (key == "VmRSS:") {
-      double kb = 0;
-      status >> kb;
-      return kb / 1024.0;
-    }
-    std::getline(status, key);
-  }
-  return 0;
-}
 
 bool is_launcher_variable(const char* entry) {
   for (const char* prefix : {"OMPI_", "PMIX_", "OPAL_", "PMI_"})
@@ -89,7 +76,7 @@ ChildResult run_child(const std::vector<std::string>& argv, const std::string& s
     const double t = elapsed();
     if (!r.hit_time_limit && !r.hit_memory_limit) {
       if (t > limits.seconds) r.hit_time_limit = true;
-      if (limits.memory_mb > 0 && resident_mb(pid) > limits.memory_mb) r.hit_memory_limit = true;
+      if (limits.memory_mb > 0 && proc_status_mb(pid, "VmRSS") > limits.memory_mb) r.hit_memory_limit = true;
       if (r.hit_time_limit || r.hit_memory_limit) kill(pid, SIGKILL);
     }
     if (on_tick) on_tick(t);

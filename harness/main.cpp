@@ -99,6 +99,8 @@ int main(int argc, char** argv) {
   solve_cmd->add_flag("--quiet", solve.quiet, "no progress on stderr");
   solve_cmd->add_option("--metrics", solve.metrics_path, "write a TOML record of the run (used by `stiction bench`)");
   solve_cmd->add_option("--record", solve.record_dir, "record every Newton system here (see `stiction replay`)");
+  solve_cmd->add_option("--forcing", solve.forcing, "Krylov tolerance per Newton step: fixed or eisenstat-walker")
+      ->check(CLI::IsMember({"fixed", "eisenstat-walker"}));
   bool no_vtu = false;
   solve_cmd->add_flag("--no-vtu", no_vtu, "do not write VTU/PVD output");
   harness::ReplayOptions replay;
@@ -120,6 +122,8 @@ int main(int argc, char** argv) {
   bench_cmd->add_flag("--resume", bench.resume, "continue a sweep: skip the runs already in runs.csv");
   bench_cmd->add_option("--time-limit", bench.time_limit_seconds, "wall-time limit per run, seconds (default 3600)");
   bench_cmd->add_option("--memory-limit-mb", bench.memory_limit_mb, "resident-memory limit per run (default 90% of RAM)");
+  bench_cmd->add_option("--forcing", bench.forcing, "Newton forcing for every run: fixed or eisenstat-walker")
+      ->check(CLI::IsMember({"fixed", "eisenstat-walker"}));
   std::string report_dir;
   auto* report_cmd = app.add_subcommand("report", "rebuild report.md of a sweep from its CSV files");
   report_cmd->add_option("dir", report_dir, "the sweep's output directory")->required();

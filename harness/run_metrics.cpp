@@ -9,11 +9,12 @@
 
 namespace stiction::harness {
 
-double peak_rss_mb() {
-  std::ifstream status("/proc/self/status");
+double proc_status_mb(int pid, const char* field) {
+  std::ifstream status(pid ? fmt::format("/proc/{}/status", pid) : std::string("/proc/self/status"));
+  const std::string wanted = std::string(field) + ":";
   std::string key;
   while (status >> key) {
-    if (key == "VmHWM:") {
+    if (key == wanted) {
       double kb = 0;
       status >> kb;
       return kb / 1024.0;

@@ -62,6 +62,7 @@ private:
 void run_solve(const SolveOptions& o, const RunInfo& info) {
   const auto t_start = std::chrono::steady_clock::now();
   auto scene = open_scene(o.scene, o.level);
+  if (!o.forcing.empty()) scene->newton.forcing = nonlinear::forcing_from_string(o.forcing);
   auto solver = solvers::create_solver(o.solver, PETSC_COMM_WORLD);
   const std::string out_dir = o.out_dir.empty() ? fmt::format("out/{}-L{}", scene->name, scene->level) : o.out_dir;
   std::error_code ec;
@@ -77,8 +78,9 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   header += fmt::format("# mesh: {} vertices, {} cells; unknowns: u_l {}, u_q {}, total {}\n", scene->mesh.n_vertices(),
                         scene->mesh.n_cells(), space.linear_block().second - space.linear_block().first,
                         space.quadratic_block().second - space.quadratic_block().first, space.n_dofs());
-  header += fmt::format("# solver: {}; newton atol {:g}, rtol {:g}, max_iterations {}\n", o.solver, scene->newton.atol,
-                        scene->newton.rtol, scene->newton.max_iterations);
+  header += fmt::format("# solver: {}; newton atol {:g}, rtol {:g}, max_iterations {}, forcing {}\n", o.solver,
+                        scene->newton.atol, scene->newton.rtol, scene->newton.max_iterations,
+                        nonlinear::to_string(scene->newton.forcing));
   if (!o.quiet) fmt::print(stderr, "{}", header);
 
   std::unique_ptr<StepTable> table;

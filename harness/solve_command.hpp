@@ -15,6 +15,7 @@ struct SolveOptions {
   std::string metrics_path;      // TOML record of the run for the sweep harness (optional)
   std::string record_dir;        // record every Newton system here (optional)
   bool write_vtu = true;         // --no-vtu turns the scene's VTU output off (sweeps)
+  std::string forcing;           // overrides the scene's [newton] forcing when set
   std::string petsc_options;     // the PETSc options given on the command line, for reports
   bool quiet = false;
 };

@@ -92,16 +92,6 @@ void KspSolver::setup(const nonlinear::NewtonSystem& system) {
   if (capture) setup_output_ = capture->text();
   setup_seconds_ = seconds_since(t0);
   setup_extra_.clear();
-  // The Krylov tolerance is the inexact-Newton forcing term: report it with every solve.
-  KSPType type;
-  STICTION_PETSC(KSPGetType(ksp_, &type));
-  if (std::string(type) != KSPPREONLY) {
-    PetscReal rtol, abstol, dtol;
-    PetscInt max_it;
-    STICTION_PETSC(KSPGetTolerances(ksp_, &rtol, &abstol, &dtol, &max_it));
-    setup_extra_["ksp_rtol"] = rtol;
-    setup_extra_["ksp_max_it"] = static_cast<double>(max_it);
-  }
   collect_setup_figures(setup_extra_);
 }
 
@@ -116,6 +106,16 @@ nonlinear::LinearSolveStats KspSolver::solve(const nonlinear::NewtonSystem& syst
   }
   PetscReal bnorm, rnorm;
   STICTION_PETSC(VecNorm(system.rhs, NORM_2, &bnorm));
+  // The Krylov tolerance is the inexact-Newton forcing term: report it with every solve.
+  KSPType type;
+  STICTION_PETSC(KSPGetType(ksp_, &type));
+  if (std::string(type) != KSPPREONLY) {
+    PetscReal rtol, abstol, dtol;
+    PetscInt max_it;
+    STICTION_PETSC(KSPGetTolerances(ksp_, &rtol, &abstol, &dtol, &max_it));
+    s.extra["ksp_rtol"] = rtol;
+    s.extra["ksp_max_it"] = static_cast<double>(max_it);
+  }
   const auto t0 = std::chrono::steady_clock::now();
   STICTION_PETSC(KSPSolve(ksp_, system.rhs, x));
   s.solve_seconds = seconds_since(t0);
@@ -135,6 +135,10 @@ nonlinear::LinearSolveStats KspSolver::solve(const nonlinear::NewtonSystem& syst
   s.final_residual = rnorm;
   s.converged = reason > 0 && std::isfinite(rnorm);
   return s;
+}
+
+void KspSolver::set_relative_tolerance(double rtol) {
+  STICTION_PETSC(KSPSetTolerances(ksp_, rtol, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
 }
 
 void KspSolver::apply_preconditioner(Vec in, Vec out) const {

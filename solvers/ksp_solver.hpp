@@ -25,6 +25,7 @@ public:
   nonlinear::LinearSolveStats solve(const nonlinear::NewtonSystem& system, Vec x) override;
   std::string describe() const override;
   void apply_preconditioner(Vec in, Vec out) const override;
+  void set_relative_tolerance(double rtol) override;
 
 protected:
   // Backend figures after set-up (factorisation memory, AMG complexity, ...);

@@ -31,6 +31,9 @@ public:
   virtual LinearSolveStats solve(const NewtonSystem& system, Vec x) = 0;
   // The solver's own description (KSPView), for reports.
   virtual std::string describe() const = 0;
+  // Relative tolerance of the next solve: the inexact-Newton forcing term. Iterative
+  // backends apply it after set-up (it overrides their -ksp_rtol); direct ones ignore it.
+  virtual void set_relative_tolerance(double rtol) {}
   // One application of the preconditioner of the last set-up (for a direct backend, the
   // triangular solves): out = P^-1 in. For benchmarks and tests.
   virtual void apply_preconditioner(Vec in, Vec out) const = 0;

@@ -38,6 +38,28 @@ std::string to_string(NewtonReason r) {
   return "UNKNOWN";
 }
 
+Forcing forcing_from_string(const std::string& name) {
+  if (name == "fixed") return Forcing::Fixed;
+  if (name == "eisenstat-walker") return Forcing::EisenstatWalker;
+  throw Error(fmt::format("unknown Newton forcing '{}' (accepted: fixed, eisenstat-walker)", name));
+}
+
+std::string to_string(Forcing f) { return f == Forcing::Fixed ? "fixed" : "eisenstat-walker"; }
+
+namespace {
+
+// Eisenstat-Walker choice 2 with PETSc's defaults and Kelley's floor (see newton.hpp).
+double next_forcing_term(double eta_prev, double r_now, double r_prev, double tolerance, bool first) {
+  constexpr double gamma = 0.9, alpha = 2, eta_first = 0.3, eta_max = 0.9, threshold = 0.1;
+  double eta = first ? eta_first : gamma * std::pow(r_now / r_prev, alpha);
+  if (!first && gamma * std::pow(eta_prev, alpha) > threshold) eta = std::max(eta, gamma * std::pow(eta_prev, alpha));
+  eta = std::min(eta, eta_max);
+  if (r_now > 0) eta = std::max(eta, 0.5 * tolerance / r_now);
+  return std::min(std::max(eta, 1e-12), eta_max);
+}
+
+}  // namespace
+
 MatNullSpace rigid_body_modes(MPI_Comm comm, const fem::FieldSpace& space) {
   const int d = space.dim();
   const mesh::Mesh& m = space.mesh();
@@ -247,6 +269,7 @@ StepResult QuasiStaticSolver::solve_step(int step) {
 
   PetscVec du;
   STICTION_PETSC(VecDuplicate(system_.rhs, du.out()));
+  double eta = 0, r_prev = rnorm;
   for (int it = 0;; ++it) {
     const bool pending = lift_pending();
     if (!pending && it > 0) {
@@ -276,6 +299,13 @@ StepResult QuasiStaticSolver::solve_step(int step) {
     }
 
     linear_.setup(system_);
+    if (settings_.forcing == Forcing::EisenstatWalker) {
+      // Relative to this system's right side, which is r (the lifted system at it = 0).
+      const double tolerance = std::max(settings_.atol, settings_.rtol * res.reference_residual);
+      eta = next_forcing_term(eta, rnorm, r_prev, tolerance, it == 0);
+      linear_.set_relative_tolerance(eta);
+    }
+    r_prev = rnorm;
     rec.linear = linear_.solve(system_, du);
     if (observer_) observer_(system_, du, rec.linear, step, it + 1);
     if (!rec.linear.converged) {

@@ -23,12 +23,23 @@
 
 namespace stiction::nonlinear {
 
+// How tightly each linear system is solved (Krylov backends): Fixed keeps the backend's own
+// -ksp_rtol; EisenstatWalker is the inexact Newton of Dembo et al. that the paper relies on
+// (Sec. 5), with Eisenstat & Walker's choice 2 (gamma 0.9, alpha 2, first term 0.3, at most
+// 0.9, safeguard when gamma eta^2 > 0.1, PETSc's SNES defaults) and Kelley's floor
+// 0.5 tol / ||r|| so the last steps are not over-solved. The Newton stopping test is the
+// same either way: only the work per linear solve changes.
+enum class Forcing { Fixed, EisenstatWalker };
+Forcing forcing_from_string(const std::string& name);  // "fixed", "eisenstat-walker"
+std::string to_string(Forcing f);
+
 struct NewtonSettings {
   double atol = 1e-10;          // absolute tolerance on the free residual norm
   double rtol = 1e-8;           // relative to the step's reference residual
   int max_iterations = 25;
   int max_backtracks = 10;      // step halvings when a trial state inverts a cell or is NaN
   double divergence_factor = 1e8;  // residual above this times r_ref: diverged
+  Forcing forcing = Forcing::Fixed;
 };
 
 enum class NewtonReason {

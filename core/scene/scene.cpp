@@ -70,7 +70,9 @@ struct Schemas {
                {"rtol", VT::Float, "tolerance relative to the step's reference residual", false, 1e-8},
                {"max_iterations", VT::Integer, "Newton iterations per load step", false, std::int64_t{25}},
                {"max_backtracks", VT::Integer, "step halvings when a trial state inverts a cell", false,
-                std::int64_t{10}}}};
+                std::int64_t{10}},
+               {"forcing", VT::String, "Krylov tolerance per Newton step (inexact Newton)", false, std::string("fixed"),
+                {"fixed", "eisenstat-walker"}}}};
     output = {"output",
               {{"vtu", VT::Boolean, "write a VTU per load step and a PVD collection", false, true},
                {"csv", VT::Boolean, "write per-step quantities as CSV", false, true}}};
@@ -323,6 +325,7 @@ std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& o
   s.newton.rtol = get_float(nw, S.newton, "rtol");
   s.newton.max_iterations = static_cast<int>(get_int(nw, S.newton, "max_iterations"));
   s.newton.max_backtracks = static_cast<int>(get_int(nw, S.newton, "max_backtracks"));
+  s.newton.forcing = nonlinear::forcing_from_string(get_string(nw, S.newton, "forcing"));
   if (!(s.newton.atol >= 0 && s.newton.rtol >= 0 && s.newton.max_iterations >= 1))
     throw Error(fmt::format("{}: newton tolerances must be >= 0 and max_iterations >= 1", origin));
   const toml::table& out = sub(root, "output");

@@ -53,6 +53,17 @@ int gmres_iterations(const nonlinear::NewtonSystem& sys, const solvers::ShellPre
   return static_cast<int>(its);
 }
 
+ExactHierarchical::ExactHierarchical(const nonlinear::NewtonSystem& sys, const std::string& prefix)
+    : hp(PETSC_COMM_WORLD, prefix) {
+  set_options(prefix, {{"ll_ksp_type", "preonly"}, {"ll_pc_type", "lu"}, {"qq_ksp_type", "preonly"}, {"qq_pc_type", "lu"}});
+  hp.set_form(solvers::SchurForm::Full);  // extracts A_lq, needed for S_q
+  hp.setup(sys.matrix, sys.field("u_l")->is, sys.field("u_q")->is, sys.near_null_space, sys.field("u_l")->block_size);
+  schur = dense_schur_complement(hp.block(0, 0), hp.block(0, 1), hp.block(1, 0), hp.block(1, 1));
+  hp.set_quadratic_operator(schur);
+}
+
+ExactHierarchical::~ExactHierarchical() { MatDestroy(&schur); }
+
 void set_options(const std::string& prefix, std::initializer_list<std::pair<const char*, const char*>> options) {
   for (const auto& [key, value] : options) PetscOptionsSetValue(nullptr, ("-" + prefix + key).c_str(), value);
 }

@@ -2,6 +2,8 @@
 // Exact block inverses for preconditioner verification on small systems.
 #include <petscksp.h>
 
+#include <string>
+
 #include "hierarchical_pc.hpp"
 #include "nonlinear/newton_system.hpp"
 
@@ -13,6 +15,15 @@ Mat dense_schur_complement(Mat A, Mat B, Mat C, Mat D);
 // GMRES (right preconditioned, rtol 1e-10) on the system with p as shell preconditioner;
 // returns the iterations and the true relative residual.
 int gmres_iterations(const nonlinear::NewtonSystem& sys, const solvers::ShellPreconditioner& p, double* residual);
+
+// HP on sys with exact sub-solves: LU of A_ll and the exact dense S_q, full form (so it is
+// the exact inverse of the displacement block). Options go under `prefix`. Owns S_q.
+struct ExactHierarchical {
+  ExactHierarchical(const nonlinear::NewtonSystem& sys, const std::string& prefix);
+  ~ExactHierarchical();
+  solvers::HierarchicalPreconditioner hp;
+  Mat schur = nullptr;
+};
 
 // Sets "-<prefix><key> value" for each pair (nullptr value for flags).
 void set_options(const std::string& prefix, std::initializer_list<std::pair<const char*, const char*>> options);

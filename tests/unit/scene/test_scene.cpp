@@ -71,8 +71,40 @@ TEST(Scene, WrongTypeAndBadChoice) {
 
 TEST(Scene, MissingRequiredKey) {
   std::string bad = kMinimal;
-  bad.erase(bad.find("nu = 0.3"), 8);
-  EXPECT_NE(error_of(bad).find("missing required key 'material[0].nu'"), std::string::npos) << error_of(bad);
+  bad.erase(bad.find("material = \"steel\""), 18);
+  EXPECT_NE(error_of(bad).find("missing required key 'body[0].material'"), std::string::npos) << error_of(bad);
+}
+
+TEST(Scene, MaterialKeysFollowTheModel) {
+  std::string missing = kMinimal;
+  missing.erase(missing.find("nu = 0.3"), 8);
+  EXPECT_NE(error_of(missing).find("model 'linear' needs key 'nu'"), std::string::npos) << error_of(missing);
+  std::string foreign = kMinimal;
+  foreign.replace(foreign.find("nu = 0.3"), 8, "nu = 0.3\nkappa = 10.0");
+  EXPECT_NE(error_of(foreign).find("key 'kappa' does not apply to model 'linear'"), std::string::npos)
+      << error_of(foreign);
+}
+
+TEST(Scene, MixedLawBuildsAPressureFieldOnlyOnItsBody) {
+  const std::string text = std::string(kMinimal) + R"(
+[[material]]
+name = "rubber"
+model = "mooney-rivlin"
+mu10 = 1.0
+mu01 = 0.1
+kappa = 100.0
+
+[[body]]
+name = "pad"
+material = "rubber"
+mesh = { generator = "structured-box", size = [1.0, 1.0], cells = [2, 2] }
+)";
+  auto s = build_scene(std::string(text).replace(text.find("boundary = \"xmin\""), 17,
+                                                 "body = \"bar\"\nboundary = \"xmin\""),
+                       "test.toml", ".");
+  ASSERT_TRUE(s->space->has_pressure());
+  EXPECT_EQ(s->space->n_pressure_dofs(), 9);  // the pad's 3 x 3 vertices only
+  EXPECT_FALSE(build_scene(kMinimal, "test.toml", ".")->space->has_pressure());
 }
 
 TEST(Scene, ScheduleLengthMustMatchSteps) {
