@@ -14,18 +14,8 @@
 namespace stiction::solvers {
 namespace {
 
-// The Newton system of the first iteration of cantilever-2d (level 0), assembled by the
-// real driver.
-struct SmallSystem {
-  std::unique_ptr<scene::Scene> scene = harness::open_scene("cantilever-2d", 0);
-  std::unique_ptr<nonlinear::LinearSolver> lu = create_solver("lu-mumps", PETSC_COMM_WORLD);
-  nonlinear::QuasiStaticSolver newton{PETSC_COMM_WORLD, scene->problem, scene->newton, *lu};
-  SmallSystem() { newton.solve_step(1); }
-  const nonlinear::NewtonSystem& system() const { return newton.system(); }
-};
-
 int iterations_with_exact_blocks(SchurForm form, double* residual) {
-  SmallSystem s;
+  test::StepSystem s("cantilever-2d");
   test::ExactHierarchical exact(s.system(), "hp_test_");
   exact.hp.set_form(form);
   return test::gmres_iterations(s.system(), exact.hp, residual);
@@ -44,7 +34,7 @@ TEST(HierarchicalPreconditioner, LowerFormWithExactBlocksNeedsTwoIterations) {
 }
 
 TEST(HierarchicalPreconditioner, PaperSettingsConvergeInAFewDozenIterations) {
-  SmallSystem s;
+  test::StepSystem s("cantilever-2d");
   const auto& sys = s.system();
   test::set_options("hp_paper_", {{"ll_ksp_type", "preonly"}, {"ll_pc_type", "lu"}, {"qq_ksp_type", "preonly"},
                                   {"qq_pc_type", "sor"}, {"qq_pc_sor_symmetric", nullptr}});

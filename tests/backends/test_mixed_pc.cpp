@@ -15,17 +15,8 @@
 namespace stiction::solvers {
 namespace {
 
-// The first Newton system of cook-membrane-2d (level 0), assembled by the real driver.
-struct MixedSystem {
-  std::unique_ptr<scene::Scene> scene = harness::open_scene("cook-membrane-2d", 0);
-  std::unique_ptr<nonlinear::LinearSolver> lu = create_solver("lu-mumps", PETSC_COMM_WORLD);
-  nonlinear::QuasiStaticSolver newton{PETSC_COMM_WORLD, scene->problem, scene->newton, *lu};
-  MixedSystem() { newton.solve_step(1); }
-  const nonlinear::NewtonSystem& system() const { return newton.system(); }
-};
-
 int iterations_with_exact_blocks(SchurForm mixed_form, double* residual) {
-  MixedSystem s;
+  test::StepSystem s("cook-membrane-2d");
   const auto& sys = s.system();
   EXPECT_NE(sys.field("p"), nullptr);
   const char* prefix = mixed_form == SchurForm::Full ? "mhp_full_" : "mhp_upper_";
@@ -64,7 +55,7 @@ TEST(MixedPreconditioner, UpperFormWithExactBlocksNeedsTwoIterations) {
 }
 
 TEST(MixedPreconditioner, PaperSettingsConverge) {
-  MixedSystem s;
+  test::StepSystem s("cook-membrane-2d");
   const auto& sys = s.system();
   test::set_options("mhp_paper_", {{"ll_ksp_type", "preonly"}, {"ll_pc_type", "lu"}, {"qq_ksp_type", "preonly"},
                                    {"qq_pc_type", "sor"}, {"qq_pc_sor_symmetric", nullptr}, {"pp_ksp_type", "preonly"},

@@ -2,7 +2,16 @@
 
 #include <string>
 
+#include "builtin_scenes.hpp"
+#include "registry.hpp"
+
 namespace stiction::test {
+
+StepSystem::StepSystem(const std::string& builtin_scene)
+    : scene(harness::open_scene(builtin_scene, 0)), lu(solvers::create_solver("lu-mumps", PETSC_COMM_WORLD)) {
+  newton = std::make_unique<nonlinear::QuasiStaticSolver>(PETSC_COMM_WORLD, scene->problem, scene->newton, *lu);
+  newton->solve_step(1);
+}
 
 Mat dense_schur_complement(Mat A, Mat B, Mat C, Mat D) {
   Mat F, Bd, X, CX, S;

@@ -4,10 +4,24 @@
 
 #include <string>
 
+#include <memory>
+
 #include "hierarchical_pc.hpp"
+#include "nonlinear/newton.hpp"
 #include "nonlinear/newton_system.hpp"
+#include "scene/scene.hpp"
 
 namespace stiction::test {
+
+// The last Newton system of load step 1 of a built-in scene at level 0, assembled by the
+// real driver (solved with lu-mumps).
+struct StepSystem {
+  explicit StepSystem(const std::string& builtin_scene);
+  std::unique_ptr<scene::Scene> scene;
+  std::unique_ptr<nonlinear::LinearSolver> lu;
+  std::unique_ptr<nonlinear::QuasiStaticSolver> newton;
+  const nonlinear::NewtonSystem& system() const { return newton->system(); }
+};
 
 // Dense S = D - C A^-1 B (A sparse, factorised by PETSc's LU).
 Mat dense_schur_complement(Mat A, Mat B, Mat C, Mat D);
