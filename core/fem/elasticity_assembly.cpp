@@ -122,7 +122,6 @@ InternalForceStatus internal_kernel(const FieldSpace& space, const std::vector<c
       physical_gradients<D, NB>(&tab.dN[static_cast<size_t>(q) * NB * D], geo.inv, G);
       const Mat3 F = deformation_gradient<D, NB>(ue, G);
       const double detF = F.determinant();
-      status.min_jacobian = std::min(status.min_jacobian, detF);
       if (!(detF > 0) && mat[c]->requires_positive_jacobian()) {
         if (status.inverted_cell < 0) status.inverted_cell = c;
         continue;

@@ -13,7 +13,6 @@
 namespace stiction::fem {
 
 struct InternalForceStatus {
-  double min_jacobian = 1.0;  // smallest det F met at a quadrature point
   int inverted_cell = -1;     // first cell with det F <= 0 for a finite-strain law, or -1
 };
 

@@ -203,7 +203,7 @@ std::map<std::string, std::array<double, 3>> QuasiStaticSolver::reactions(const 
   return out;
 }
 
-void QuasiStaticSolver::assemble_system(int step, const std::vector<double>& r, bool lift) {
+void QuasiStaticSolver::assemble_system(const std::vector<double>& r, bool lift) {
   Mat A = system_.matrix;
   stiffness_->begin_assembly();
   fem::assemble_internal(*problem_.space, problem_.cell_material, u_, nullptr, stiffness_.get());
@@ -222,7 +222,6 @@ void QuasiStaticSolver::assemble_system(int step, const std::vector<double>& r, 
   STICTION_PETSC(VecAssemblyBegin(x));
   STICTION_PETSC(VecAssemblyEnd(x));
   STICTION_PETSC(MatZeroRowsColumns(A, static_cast<PetscInt>(constrained_.size()), constrained_.data(), 1.0, x, system_.rhs));
-  (void)step;
 }
 
 StepResult QuasiStaticSolver::solve_step(int step) {
@@ -285,7 +284,7 @@ StepResult QuasiStaticSolver::solve_step(int step) {
 
     NewtonIteration rec;
     t0 = std::chrono::steady_clock::now();
-    assemble_system(step, r, pending);
+    assemble_system(r, pending);
     rec.assembly_seconds = asm_seconds + seconds_since(t0);
     if (it == 0) {
       PetscReal bnorm;  // free part: the lifted system's right side minus its prescribed rows

@@ -98,7 +98,7 @@ public:
 
 private:
   void build_constraints();
-  void assemble_system(int step, const std::vector<double>& r, bool lift);
+  void assemble_system(const std::vector<double>& r, bool lift);
   double free_norm(const std::vector<double>& r) const;
   std::map<std::string, std::array<double, 3>> reactions(const std::vector<double>& r) const;
 

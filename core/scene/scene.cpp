@@ -110,14 +110,16 @@ std::vector<const toml::table*> tables(const toml::table& t, const char* key) {
 std::unique_ptr<materials::Material> make_material(const toml::table& t, const std::string& file) {
   const auto& S = schemas().material;
   const std::string model = get_string(t, S, "model"), name = get_string(t, S, "name");
-  // The keys a model needs, and none of another model's.
-  const std::vector<std::string> needs = model == "mooney-rivlin" ? std::vector<std::string>{"mu10", "mu01", "kappa"}
-                                                                  : std::vector<std::string>{"E", "nu"};
+  // The keys a model needs (and may take), and none of another model's.
+  const bool mooney = model == "mooney-rivlin";
+  const std::vector<std::string> needs = mooney ? std::vector<std::string>{"mu10", "mu01", "kappa"}
+                                                : std::vector<std::string>{"E", "nu"};
+  std::vector<std::string> takes = needs;
+  if (mooney) takes.push_back("formulation");
   for (const auto& k : needs)
     if (!t.contains(k)) throw Error(fmt::format("{}: material '{}': model '{}' needs key '{}'", file, name, model, k));
   for (const char* k : {"E", "nu", "mu10", "mu01", "kappa", "formulation"})
-    if (t.contains(k) && std::find(needs.begin(), needs.end(), k) == needs.end() &&
-        !(model == "mooney-rivlin" && std::string(k) == "formulation"))
+    if (t.contains(k) && std::find(takes.begin(), takes.end(), k) == takes.end())
       throw Error(fmt::format("{}: material '{}': key '{}' does not apply to model '{}'", file, name, k, model));
   try {
     if (model == "linear") return std::make_unique<materials::LinearElastic>(get_float(t, S, "E"), get_float(t, S, "nu"));
