@@ -37,6 +37,8 @@ public:
   virtual double mixed_bulk_modulus() const { return 0; }
   // alpha of MHP (11): the pressure Schur complement is approximated by alpha M_p.
   virtual double pressure_schur_scale() const { return 0; }
+  // Small-strain Young's modulus: the stiffness scale of contact penalties and heuristics.
+  virtual double reference_modulus() const = 0;
 };
 
 // Small-strain linear elasticity: P = lambda tr(eps) I + 2 mu eps, eps = sym(F - I).
@@ -50,6 +52,7 @@ public:
   void first_piola_and_tangent(const Mat3& F, Mat3& P, Tangent& A) const override;
   Mat3 cauchy(const Mat3& F) const override { return first_piola(F); }
   bool requires_positive_jacobian() const override { return false; }
+  double reference_modulus() const override { return E_; }
 
 private:
   double E_, nu_, lambda_, mu_;
@@ -66,6 +69,7 @@ public:
   double energy(const Mat3& F) const override;
   Mat3 first_piola(const Mat3& F) const override;
   void first_piola_and_tangent(const Mat3& F, Mat3& P, Tangent& A) const override;
+  double reference_modulus() const override { return E_; }
 
 private:
   double E_, nu_, lambda_, mu_;
@@ -87,6 +91,8 @@ public:
   void first_piola_and_tangent(const Mat3& F, Mat3& P, Tangent& A) const override;
   double mixed_bulk_modulus() const override { return form_ == Form::Mixed ? kappa_ : 0.0; }
   double pressure_schur_scale() const override { return -(1 / mu10_ + 1 / kappa_); }  // (11)
+  // Incompressible limit: shear modulus 2 (mu10 + mu01), E = 3 mu.
+  double reference_modulus() const override { return 6 * (mu10_ + mu01_); }
 
 private:
   double mu10_, mu01_, kappa_;

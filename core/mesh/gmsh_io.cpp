@@ -141,8 +141,8 @@ Mesh extract_current_model(const std::string& what) {
   return m;
 }
 
-void set_size_and_generate(int dim, double h) {
-  gmsh::option::setNumber("Mesh.MeshSizeMin", h);
+void set_size_and_generate(int dim, double h, double h_min = 0) {
+  gmsh::option::setNumber("Mesh.MeshSizeMin", h_min > 0 ? h_min : h);
   gmsh::option::setNumber("Mesh.MeshSizeMax", h);
   gmsh::option::setNumber("Mesh.Algorithm3D", 1);  // Delaunay: fast and deterministic
   gmsh::model::mesh::generate(dim);
@@ -181,12 +181,25 @@ void build_box_model(int dim, const std::array<double, 3>& L, double h) {
   set_size_and_generate(dim, h);
 }
 
-void build_polygon_model(const std::vector<double>& xy, const std::vector<std::string>& names, double h,
-                         double thickness) {
+void build_polygon_model(const PolygonSpec& spec) {
+  const auto& xy = spec.xy;
+  const auto& names = spec.names;
+  const double h = spec.h * spec.scale, thickness = spec.thickness;
   const int n = static_cast<int>(xy.size() / 2);
   std::vector<int> points, lines;
-  for (int i = 0; i < n; ++i) points.push_back(gmsh::model::occ::addPoint(xy[2 * i], xy[2 * i + 1], 0));
-  for (int i = 0; i < n; ++i) lines.push_back(gmsh::model::occ::addLine(points[i], points[(i + 1) % n]));
+  // Point sizes grade the mesh (Gmsh interpolates them along the sides and inside).
+  for (int i = 0; i < n; ++i)
+    points.push_back(gmsh::model::occ::addPoint(xy[2 * i], xy[2 * i + 1], 0,
+                                                spec.point_sizes.empty() ? 0.0 : spec.point_sizes[i] * spec.scale));
+  for (int i = 0; i < n; ++i) {
+    auto arc = spec.arc_centers.find(i);
+    if (arc == spec.arc_centers.end()) {
+      lines.push_back(gmsh::model::occ::addLine(points[i], points[(i + 1) % n]));
+      continue;
+    }
+    const int centre = gmsh::model::occ::addPoint(arc->second[0], arc->second[1], 0);
+    lines.push_back(gmsh::model::occ::addCircleArc(points[i], centre, points[(i + 1) % n]));
+  }
   const int surface = gmsh::model::occ::addPlaneSurface({gmsh::model::occ::addCurveLoop(lines)});
   const int dim = thickness > 0 ? 3 : 2;
   std::vector<std::vector<int>> side_entities(n);
@@ -235,7 +248,10 @@ void build_polygon_model(const std::vector<double>& xy, const std::vector<std::s
   for (const auto& [name, entities] : by_name) add_group(entities, name);
   add_group(front, "front");
   add_group(back, "back");
-  set_size_and_generate(dim, h);
+  const double h_min = spec.point_sizes.empty()
+                           ? h
+                           : *std::min_element(spec.point_sizes.begin(), spec.point_sizes.end()) * spec.scale;
+  set_size_and_generate(dim, h, h_min);
 }
 
 void check_box_args(int dim, const std::array<double, 3>& L, double h) {
@@ -265,17 +281,29 @@ Mesh generate_box(int dim, const std::array<double, 3>& L, double h) {
   });
 }
 
-Mesh generate_polygon(const std::vector<double>& xy, const std::vector<std::string>& names, double h,
-                      double thickness) {
+Mesh generate_polygon(const PolygonSpec& spec) {
+  const auto& xy = spec.xy;
+  const size_t n = xy.size() / 2;
   if (xy.size() < 6 || xy.size() % 2) throw Error("polygon generator: give at least 3 points as x, y pairs");
-  if (names.size() != xy.size() / 2)
-    throw Error(fmt::format("polygon generator: {} points need {} side names (side i joins point i to i+1)",
-                            xy.size() / 2, xy.size() / 2));
-  if (!(h > 0)) throw Error("polygon generator: the target size h must be positive");
-  if (thickness < 0) throw Error("polygon generator: thickness must be positive (or 0 for 2D)");
+  if (spec.names.size() != n)
+    throw Error(fmt::format("polygon generator: {} points need {} side names (side i joins point i to i+1)", n, n));
+  if (!(spec.h > 0 && spec.scale > 0)) throw Error("polygon generator: the target size h must be positive");
+  if (spec.thickness < 0) throw Error("polygon generator: thickness must be positive (or 0 for 2D)");
+  if (!spec.point_sizes.empty() && spec.point_sizes.size() != n)
+    throw Error(fmt::format("polygon generator: {} points need {} point sizes", n, n));
+  for (double s : spec.point_sizes)
+    if (!(s > 0 && s <= spec.h)) throw Error("polygon generator: point sizes must be positive and at most h");
+  for (const auto& [side, c] : spec.arc_centers) {
+    if (side < 0 || side >= static_cast<int>(n)) throw Error(fmt::format("polygon generator: no side {} for an arc", side));
+    const size_t a = side, b = (side + 1) % n;
+    const double ra = std::hypot(xy[2 * a] - c[0], xy[2 * a + 1] - c[1]), rb = std::hypot(xy[2 * b] - c[0], xy[2 * b + 1] - c[1]);
+    if (!(ra > 0) || std::abs(ra - rb) > 1e-9 * ra)
+      throw Error(fmt::format("polygon generator: side {} is not an arc about ({}, {}): its ends are at radii {} and {}",
+                              side, c[0], c[1], ra, rb));
+  }
   return with_gmsh("polygon generator", [&] {
     gmsh_begin();
-    build_polygon_model(xy, names, h, thickness);
+    build_polygon_model(spec);
     return extract_current_model("generated polygon");
   });
 }

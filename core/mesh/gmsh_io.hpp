@@ -3,6 +3,7 @@
 // tags, physical names become tag names) and generate the built-in geometries through the
 // Gmsh C++ API with the OpenCASCADE kernel. Higher-order input cells keep their corners.
 #include <array>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -16,11 +17,23 @@ Mesh read_msh(const std::string& path);
 // Facet tags: xmin=1 xmax=2 ymin=3 ymax=4 zmin=5 zmax=6; cell tag 1 named "body".
 Mesh generate_box(int dim, const std::array<double, 3>& lengths, double h);
 
-// Plane polygon (points x0 y0 x1 y1 ..., counter-clockwise) with side i (point i to i+1)
-// named side_names[i]; meshed in 2D, or extruded along z by `thickness` > 0 and meshed in
-// 3D, with the extra faces named "front" (z = 0) and "back" (z = thickness). Cell tag 1 "body".
-Mesh generate_polygon(const std::vector<double>& points, const std::vector<std::string>& side_names, double h,
-                      double thickness = 0);
+// A plane polygon (points counter-clockwise), side i (point i to i+1) named names[i]; a
+// side with an arc centre is the circular arc from point i to i+1 about it (both points
+// must be equidistant from it). Meshed in 2D, or extruded along z by `thickness` > 0 and
+// meshed in 3D, with the extra faces named "front" (z = 0) and "back" (z = thickness).
+// point_sizes (one per point, each <= h; empty: uniform h) grade the mesh towards points;
+// `scale` multiplies every size (a finer mesh of the same, exactly curved, geometry).
+// Cell tag 1 "body".
+struct PolygonSpec {
+  std::vector<double> xy;
+  std::vector<std::string> names;
+  double h = 0;
+  double thickness = 0;
+  std::vector<double> point_sizes;
+  std::map<int, std::array<double, 2>> arc_centers;  // side -> centre
+  double scale = 1;
+};
+Mesh generate_polygon(const PolygonSpec& spec);
 
 // Writes the geometry above as a .msh 4.1 file (binary or ASCII), for tests and users.
 void write_box_msh(int dim, const std::array<double, 3>& lengths, double h,

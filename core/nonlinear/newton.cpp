@@ -7,6 +7,7 @@
 
 #include "common/error.hpp"
 #include "fem/elasticity_assembly.hpp"
+#include "nonlinear/augmented_matrix.hpp"
 
 namespace stiction::nonlinear {
 
@@ -34,6 +35,7 @@ std::string to_string(NewtonReason r) {
     case NewtonReason::DivergedInvertedElement: return "DIVERGED_INVERTED_ELEMENT";
     case NewtonReason::DivergedNaN: return "DIVERGED_NAN";
     case NewtonReason::DivergedResidualGrowth: return "DIVERGED_RESIDUAL_GROWTH";
+    case NewtonReason::DivergedActiveSetCycle: return "DIVERGED_ACTIVE_SET_CYCLE";
   }
   return "UNKNOWN";
 }
@@ -60,7 +62,7 @@ double next_forcing_term(double eta_prev, double r_now, double r_prev, double to
 
 }  // namespace
 
-MatNullSpace rigid_body_modes(MPI_Comm comm, const fem::FieldSpace& space) {
+MatNullSpace rigid_body_modes(MPI_Comm comm, const fem::FieldSpace& space, int n_extra) {
   const int d = space.dim();
   const mesh::Mesh& m = space.mesh();
   double c[3] = {0, 0, 0};  // rotate about the centroid: better-conditioned modes
@@ -100,9 +102,11 @@ MatNullSpace rigid_body_modes(MPI_Comm comm, const fem::FieldSpace& space) {
     for (double& v : modes[i]) v /= nrm;
   }
   std::vector<Vec> vecs(n_modes);
+  const int n = space.n_dofs() + n_extra;
   for (int i = 0; i < n_modes; ++i) {
-    STICTION_PETSC(VecCreateMPI(comm, space.n_dofs(), space.n_dofs(), &vecs[i]));
-    STICTION_PETSC(VecSetBlockSize(vecs[i], space.has_pressure() ? 1 : d));
+    modes[i].resize(n, 0.0);
+    STICTION_PETSC(VecCreateMPI(comm, n, n, &vecs[i]));
+    STICTION_PETSC(VecSetBlockSize(vecs[i], space.has_pressure() || n_extra % d ? 1 : d));
     copy_to_vec(modes[i], vecs[i]);
   }
   MatNullSpace nsp;
@@ -111,6 +115,12 @@ MatNullSpace rigid_body_modes(MPI_Comm comm, const fem::FieldSpace& space) {
   return nsp;
 }
 
+// The residual of the augmented system: u rows (elastic part kept apart, so a change of
+// contact states re-evaluates only the constraint part) and constraint rows.
+struct QuasiStaticSolver::Residuals {
+  std::vector<double> elastic, u, c;
+};
+
 QuasiStaticSolver::QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& problem, const NewtonSettings& settings,
                                      LinearSolver& linear)
     : comm_(comm), problem_(problem), settings_(settings), linear_(linear) {
@@ -118,12 +128,19 @@ QuasiStaticSolver::QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& pro
   if (static_cast<int>(problem.cell_material.size()) != space.mesh().n_cells())
     throw Error("problem: one material per cell expected", ErrorKind::Internal);
   u_.assign(space.n_dofs(), 0.0);
+  PetscInt n_lambda = 0;
+  for (const auto* c : problem.constraints) {
+    constraint_offset_.push_back(n_lambda);
+    n_lambda += c->n_multipliers();
+  }
+  lambda_.assign(n_lambda, 0.0);
   system_.comm = comm;
   system_.block_size = space.has_pressure() ? 1 : space.dim();
   stiffness_ = std::make_unique<fem::StiffnessMatrix>(comm, space);
   STICTION_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(stiffness_->mat())));
-  *system_.matrix.out() = stiffness_->mat();
-  STICTION_PETSC(MatCreateVecs(system_.matrix, nullptr, system_.rhs.out()));
+  *system_.matrix.out() = stiffness_->mat();  // replaced by the augmented matrix with contact
+  const PetscInt n_total = space.n_dofs() + n_lambda;
+  STICTION_PETSC(VecCreateMPI(comm, n_total, n_total, system_.rhs.out()));
   auto add_field = [&](const char* name, std::pair<int, int> range, int block_size) {
     FieldBlock f{name, {}, block_size};
     STICTION_PETSC(ISCreateStride(comm, range.second - range.first, range.first, 1, f.is.out()));
@@ -133,6 +150,7 @@ QuasiStaticSolver::QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& pro
   add_field("u_l", space.linear_block(), space.dim());
   if (fem::is_quadratic(space.kind())) add_field("u_q", space.quadratic_block(), space.dim());
   if (space.has_pressure()) add_field("p", space.pressure_block(), 1);
+  if (n_lambda > 0) add_field("lambda", {space.n_dofs(), static_cast<int>(n_total)}, space.dim());
   if (space.has_pressure()) {
     *system_.pressure_mass.out() = fem::assemble_pressure_mass(comm, space);
     // alpha of MHP (11) from the (first) mixed law; the paper's scenes have one rubber body.
@@ -142,7 +160,7 @@ QuasiStaticSolver::QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& pro
         break;
       }
   }
-  *system_.near_null_space.out() = rigid_body_modes(comm, space);
+  *system_.near_null_space.out() = rigid_body_modes(comm, space, static_cast<int>(n_lambda));
   STICTION_PETSC(MatSetNearNullSpace(system_.matrix, system_.near_null_space));
   build_constraints();
 }
@@ -182,6 +200,19 @@ fem::InternalForceStatus QuasiStaticSolver::residual(int step, const std::vector
   return status;
 }
 
+fem::InternalForceStatus QuasiStaticSolver::evaluate(int step, const std::vector<double>& u,
+                                                     const std::vector<double>& lambda, Residuals& r,
+                                                     bool elastic) const {
+  fem::InternalForceStatus status;
+  if (elastic) status = residual(step, u, r.elastic);
+  r.u = r.elastic;
+  r.c.assign(lambda.size(), 0.0);
+  for (size_t k = 0; k < problem_.constraints.size(); ++k)
+    problem_.constraints[k]->evaluate(step, u, lambda.data() + constraint_offset_[k], r.u,
+                                      r.c.data() + constraint_offset_[k], nullptr, 0);
+  return status;
+}
+
 double QuasiStaticSolver::free_norm(const std::vector<double>& r) const {
   double s = 0;
   for (size_t i = 0; i < r.size(); ++i)
@@ -203,13 +234,29 @@ std::map<std::string, std::array<double, 3>> QuasiStaticSolver::reactions(const 
   return out;
 }
 
-void QuasiStaticSolver::assemble_system(const std::vector<double>& r, bool lift) {
-  Mat A = system_.matrix;
+void QuasiStaticSolver::assemble_system(const Residuals& r, bool lift) {
+  const fem::FieldSpace& space = *problem_.space;
   stiffness_->begin_assembly();
-  fem::assemble_internal(*problem_.space, problem_.cell_material, u_, nullptr, stiffness_.get());
+  fem::assemble_internal(space, problem_.cell_material, u_, nullptr, stiffness_.get());
   stiffness_->end_assembly();
-  std::vector<double> b(r.size());
-  for (size_t i = 0; i < r.size(); ++i) b[i] = -r[i];
+  if (!lambda_.empty()) {
+    // The augmented matrix (30): the tangent bordered by -B^T, C_u and C_lambda.
+    SparseEntries blocks, mass;
+    std::vector<double> scratch_u(space.n_dofs()), scratch_c(lambda_.size());
+    const PetscInt n_u = space.n_dofs();
+    for (size_t k = 0; k < problem_.constraints.size(); ++k) {
+      problem_.constraints[k]->evaluate(step_, u_, lambda_.data() + constraint_offset_[k], scratch_u,
+                                        scratch_c.data() + constraint_offset_[k], &blocks, n_u + constraint_offset_[k]);
+      problem_.constraints[k]->schur_mass(mass, constraint_offset_[k]);
+    }
+    *system_.matrix.out() = build_augmented_matrix(stiffness_->mat(), static_cast<PetscInt>(lambda_.size()), blocks);
+    STICTION_PETSC(MatSetNearNullSpace(system_.matrix, system_.near_null_space));
+    *system_.multiplier_schur_mass.out() =
+        build_sparse_matrix(system_.comm, static_cast<PetscInt>(lambda_.size()), mass);
+  }
+  std::vector<double> b(r.u.size() + r.c.size());
+  for (size_t i = 0; i < r.u.size(); ++i) b[i] = -r.u[i];
+  for (size_t i = 0; i < r.c.size(); ++i) b[r.u.size() + i] = -r.c[i];
   copy_to_vec(b, system_.rhs);
   // Constrained rows and columns become identity; the right side takes the prescribed
   // increment on them and, through the removed columns, its effect on the free rows.
@@ -221,15 +268,36 @@ void QuasiStaticSolver::assemble_system(const std::vector<double>& r, bool lift)
       STICTION_PETSC(VecSetValue(x, constrained_[k], target_[k] - u_[constrained_[k]], INSERT_VALUES));
   STICTION_PETSC(VecAssemblyBegin(x));
   STICTION_PETSC(VecAssemblyEnd(x));
-  STICTION_PETSC(MatZeroRowsColumns(A, static_cast<PetscInt>(constrained_.size()), constrained_.data(), 1.0, x, system_.rhs));
+  STICTION_PETSC(MatZeroRowsColumns(system_.matrix, static_cast<PetscInt>(constrained_.size()), constrained_.data(),
+                                    1.0, x, system_.rhs));
+}
+
+int QuasiStaticSolver::update_constraint_states(int step, const std::vector<double>& dlambda) {
+  int changes = 0;
+  for (size_t k = 0; k < problem_.constraints.size(); ++k)
+    changes += problem_.constraints[k]->update_states(step, u_, lambda_.data() + constraint_offset_[k],
+                                                      dlambda.data() + constraint_offset_[k]);
+  return changes;
+}
+
+std::vector<char> QuasiStaticSolver::constraint_states() const {
+  std::vector<char> all;
+  for (const auto* c : problem_.constraints) {
+    const auto s = c->states();
+    all.insert(all.end(), s.begin(), s.end());
+  }
+  return all;
 }
 
 StepResult QuasiStaticSolver::solve_step(int step) {
   const auto t_step = std::chrono::steady_clock::now();
   const fem::FieldSpace& space = *problem_.space;
   const int d = space.dim();
+  const size_t n_u = space.n_dofs();
   StepResult res;
   res.step = step;
+  step_ = step;
+  for (auto* c : problem_.constraints) c->begin_step(step, u_);
 
   // Prescribed values of this step on every constrained dof (last condition wins).
   std::vector<double> full_target(space.n_dofs(), 0.0);
@@ -248,37 +316,54 @@ StepResult QuasiStaticSolver::solve_step(int step) {
       if (u_[constrained_[k]] != target_[k]) return true;
     return false;
   };
+  auto norm2 = [](const std::vector<double>& v) {
+    double s = 0;
+    for (double x : v) s += x * x;
+    return std::sqrt(s);
+  };
 
-  std::vector<double> r, trial, rt;
+  Residuals r, rt;
   auto t0 = std::chrono::steady_clock::now();
-  const auto st0 = residual(step, u_, r);
+  const auto st0 = evaluate(step, u_, lambda_, r, true);
   double asm_seconds = seconds_since(t0);
   if (st0.inverted_cell >= 0)
     throw Error(fmt::format("load step {}: cell {} is inverted at the start of the step", step, st0.inverted_cell),
                 ErrorKind::Numerical);
-  double rnorm = free_norm(r);
+  double rnorm = free_norm(r.u), cnorm = norm2(r.c), c_reference = cnorm;
   res.initial_residual = res.reference_residual = res.final_residual = rnorm;
   auto finish = [&](NewtonReason why) {
     res.reason = why;
     res.final_residual = rnorm;
-    if (res.converged()) res.reactions = reactions(r);
+    if (res.converged()) {
+      res.reactions = reactions(r.u);
+      for (size_t k = 0; k < problem_.constraints.size(); ++k)
+        res.contact.push_back(problem_.constraints[k]->summary(lambda_.data() + constraint_offset_[k]));
+    }
     res.wall_seconds = seconds_since(t_step);
     return res;
   };
+  // Contact: states seen in this step, with the residual when they were last left.
+  std::map<std::vector<char>, double> seen_states;
+  int last_changes = 0;
+  if (!lambda_.empty()) {  // the states of the step's initial iterate (the master has moved)
+    last_changes = update_constraint_states(step, std::vector<double>(lambda_.size(), 0.0));
+    if (last_changes > 0) evaluate(step, u_, lambda_, r, false);
+    cnorm = c_reference = norm2(r.c);
+  }
 
   PetscVec du;
   STICTION_PETSC(VecDuplicate(system_.rhs, du.out()));
   double eta = 0, r_prev = rnorm;
   for (int it = 0;; ++it) {
     const bool pending = lift_pending();
-    if (!pending && it > 0) {
-      if (rnorm <= settings_.atol) return finish(NewtonReason::ConvergedAbsolute);
-      if (rnorm <= settings_.rtol * res.reference_residual) return finish(NewtonReason::ConvergedRelative);
-    }
-    if (!pending && it == 0 && rnorm <= settings_.atol) return finish(NewtonReason::ConvergedAbsolute);
+    const double tol = std::max(settings_.atol, settings_.rtol * res.reference_residual);
+    const bool constraints_ok = last_changes == 0 && cnorm <= std::max(settings_.atol, settings_.rtol * c_reference);
+    if (!pending && (it > 0 || rnorm <= settings_.atol) && constraints_ok && rnorm <= tol)
+      return finish(rnorm <= settings_.atol ? NewtonReason::ConvergedAbsolute : NewtonReason::ConvergedRelative);
     if (it == settings_.max_iterations) {
-      res.detail = fmt::format("{} iterations, residual {:.3e} above tolerance {:.3e}", it, rnorm,
-                               std::max(settings_.atol, settings_.rtol * res.reference_residual));
+      res.detail = fmt::format("{} iterations, residual {:.3e} above tolerance {:.3e}", it, rnorm, tol);
+      if (!lambda_.empty())
+        res.detail += fmt::format(" (contact residual {:.3e}, {} states changed last)", cnorm, last_changes);
       return finish(NewtonReason::DivergedMaxIterations);
     }
 
@@ -288,10 +373,10 @@ StepResult QuasiStaticSolver::solve_step(int step) {
     rec.assembly_seconds = asm_seconds + seconds_since(t0);
     if (it == 0) {
       PetscReal bnorm;  // free part: the lifted system's right side minus its prescribed rows
-      std::vector<double> b(space.n_dofs());
+      std::vector<double> b(n_u);
       const PetscScalar* a;
       STICTION_PETSC(VecGetArrayRead(system_.rhs, &a));
-      std::copy(a, a + space.n_dofs(), b.begin());
+      std::copy(a, a + n_u, b.begin());
       STICTION_PETSC(VecRestoreArrayRead(system_.rhs, &a));
       bnorm = free_norm(b);
       res.reference_residual = std::max(rnorm, static_cast<double>(bnorm));
@@ -300,8 +385,8 @@ StepResult QuasiStaticSolver::solve_step(int step) {
     linear_.setup(system_);
     if (settings_.forcing == Forcing::EisenstatWalker) {
       // Relative to this system's right side, which is r (the lifted system at it = 0).
-      const double tolerance = std::max(settings_.atol, settings_.rtol * res.reference_residual);
-      eta = next_forcing_term(eta, rnorm, r_prev, tolerance, it == 0);
+      eta = next_forcing_term(eta, rnorm, r_prev, std::max(settings_.atol, settings_.rtol * res.reference_residual),
+                              it == 0);
       linear_.set_relative_tolerance(eta);
     }
     r_prev = rnorm;
@@ -312,25 +397,29 @@ StepResult QuasiStaticSolver::solve_step(int step) {
       res.detail = fmt::format("linear solver {} stopped with {}", linear_.name(), rec.linear.reason);
       return finish(NewtonReason::DivergedLinearSolver);
     }
-    std::vector<double> dv(space.n_dofs());
+    std::vector<double> dv(n_u), dl(lambda_.size());
     {
       const PetscScalar* a;
       STICTION_PETSC(VecGetArrayRead(du, &a));
-      std::copy(a, a + space.n_dofs(), dv.begin());
+      std::copy(a, a + n_u, dv.begin());
+      std::copy(a + n_u, a + n_u + dl.size(), dl.begin());
       STICTION_PETSC(VecRestoreArrayRead(du, &a));
     }
 
     // Backtracking: halve the step while the trial state inverts a cell or is not finite.
     double alpha = 1;
+    std::vector<double> trial, trial_lambda;
     for (int bt = 0;; ++bt) {
       trial = u_;
+      trial_lambda = lambda_;
       for (size_t i = 0; i < dv.size(); ++i) trial[i] += alpha * dv[i];
+      for (size_t i = 0; i < dl.size(); ++i) trial_lambda[i] += alpha * dl[i];
       if (alpha == 1)
         for (size_t k = 0; k < constrained_.size(); ++k) trial[constrained_[k]] = target_[k];  // exact, free of round-off
       t0 = std::chrono::steady_clock::now();
-      const auto st = residual(step, trial, rt);
+      const auto st = evaluate(step, trial, trial_lambda, rt, true);
       asm_seconds = seconds_since(t0);
-      const double tn = free_norm(rt);
+      const double tn = free_norm(rt.u) + norm2(rt.c);
       if (st.inverted_cell < 0 && std::isfinite(tn)) break;
       if (bt == settings_.max_backtracks) {
         res.iterations.push_back(rec);
@@ -342,15 +431,41 @@ StepResult QuasiStaticSolver::solve_step(int step) {
       alpha *= 0.5;
     }
     u_.swap(trial);
-    r.swap(rt);
-    rnorm = free_norm(r);
+    lambda_.swap(trial_lambda);
+    r = std::move(rt);
+    if (!lambda_.empty()) {
+      const std::vector<char> before = constraint_states();
+      last_changes = update_constraint_states(step, dl);
+      if (last_changes > 0) {
+        seen_states[before] = free_norm(r.u) + norm2(r.c);
+        evaluate(step, u_, lambda_, r, false);  // the rows of the new states
+      }
+      c_reference = std::max(c_reference, norm2(r.c));
+      // Contact carries the load of a displacement-driven master: its forces set the scale.
+      std::vector<double> contact_force(n_u);
+      for (size_t i = 0; i < n_u; ++i) contact_force[i] = r.u[i] - r.elastic[i];
+      res.reference_residual = std::max(res.reference_residual, free_norm(contact_force));
+    }
+    rnorm = free_norm(r.u);
+    cnorm = norm2(r.c);
     rec.residual = rnorm;
+    rec.constraint_residual = cnorm;
+    rec.state_changes = last_changes;
     rec.step_length = alpha;
     res.iterations.push_back(rec);
-    if (rnorm > settings_.divergence_factor * res.reference_residual) {
+    if (rnorm > settings_.divergence_factor * std::max(res.reference_residual, settings_.atol)) {
       res.detail = fmt::format("residual {:.3e} grew beyond {:g} x the reference {:.3e}", rnorm,
                                settings_.divergence_factor, res.reference_residual);
       return finish(NewtonReason::DivergedResidualGrowth);
+    }
+    if (last_changes > 0) {
+      auto seen = seen_states.find(constraint_states());
+      if (seen != seen_states.end() && rnorm + cnorm >= seen->second) {
+        res.detail = fmt::format("contact states of iteration {} recur and the residual {:.3e} has not fallen below "
+                                 "{:.3e} since they were last seen",
+                                 it + 1, rnorm + cnorm, seen->second);
+        return finish(NewtonReason::DivergedActiveSetCycle);
+      }
     }
   }
 }

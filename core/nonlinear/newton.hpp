@@ -9,6 +9,13 @@
 // Convergence: ||r_free|| <= max(atol, rtol * r_ref), where r_ref is the larger of the
 // step's initial free residual and the right side of its first (lifted) system, i.e. the
 // size of the load increment. Every stop without convergence carries a named reason.
+//
+// Contact (problem.constraints): the multipliers follow the displacement (and pressure)
+// unknowns, the system is the augmented (30), and a step converges only when, in addition,
+// the last update changed no contact state and ||r_c|| <= max(atol, rtol * r_c,ref), r_c,ref
+// being the largest constraint residual seen in the step. A set of states that recurs
+// without the residual having fallen since it was last seen stops the step
+// (DIVERGED_ACTIVE_SET_CYCLE).
 #include <array>
 #include <chrono>
 #include <functional>
@@ -50,6 +57,7 @@ enum class NewtonReason {
   DivergedInvertedElement,
   DivergedNaN,
   DivergedResidualGrowth,
+  DivergedActiveSetCycle,  // contact states recur without the residual falling
 };
 std::string to_string(NewtonReason r);
 inline bool converged(NewtonReason r) {
@@ -60,6 +68,8 @@ struct NewtonIteration {
   double residual = 0;          // free residual after the update
   double step_length = 1;       // after backtracking
   double assembly_seconds = 0;  // residual + tangent for this iteration
+  double constraint_residual = 0;  // ||r_c|| after the update (contact rows; 0 without)
+  int state_changes = 0;        // contact states changed by this update
   LinearSolveStats linear;
 };
 
@@ -69,6 +79,7 @@ struct StepResult {
   double initial_residual = 0, reference_residual = 0, final_residual = 0;
   std::vector<NewtonIteration> iterations;
   std::map<std::string, std::array<double, 3>> reactions;  // per Dirichlet condition
+  std::vector<ConstraintSummary> contact;                  // per contact pair, when converged
   double wall_seconds = 0;
   std::string detail;  // human-readable context for a failure
   bool converged() const { return nonlinear::converged(reason); }
@@ -86,6 +97,8 @@ public:
 
   const std::vector<double>& displacement() const { return u_; }
   std::vector<double>& displacement() { return u_; }
+  // Contact multipliers of every constraint, in order (empty without contact).
+  const std::vector<double>& multipliers() const { return lambda_; }
   // Full residual r(u) = f_int - f_ext at `step` (constrained rows included), and status.
   fem::InternalForceStatus residual(int step, const std::vector<double>& u, std::vector<double>& r) const;
   // The last assembled Newton system (for record/replay and tests).
@@ -97,8 +110,14 @@ public:
   void set_system_observer(SystemObserver observer) { observer_ = std::move(observer); }
 
 private:
+  struct Residuals;
   void build_constraints();
-  void assemble_system(const std::vector<double>& r, bool lift);
+  void assemble_system(const Residuals& r, bool lift);
+  // Elastic part (when `elastic` is set) and constraint part of the residual at (u, lambda).
+  fem::InternalForceStatus evaluate(int step, const std::vector<double>& u, const std::vector<double>& lambda,
+                                    Residuals& r, bool elastic) const;
+  int update_constraint_states(int step, const std::vector<double>& dlambda);
+  std::vector<char> constraint_states() const;
   double free_norm(const std::vector<double>& r) const;
   std::map<std::string, std::array<double, 3>> reactions(const std::vector<double>& r) const;
 
@@ -107,17 +126,21 @@ private:
   NewtonSettings settings_;
   LinearSolver& linear_;
   std::vector<double> u_;
+  std::vector<double> lambda_;                // contact multipliers (augmented unknowns n_u..)
+  std::vector<PetscInt> constraint_offset_;   // first multiplier of each constraint in lambda_
   std::unique_ptr<fem::StiffnessMatrix> stiffness_;
   NewtonSystem system_;  // its matrix is stiffness_'s
   std::vector<PetscInt> constrained_;         // sorted constrained dofs
   std::vector<char> is_constrained_;          // per dof
   std::vector<std::vector<int>> bc_nodes_;    // per Dirichlet condition
   std::vector<double> target_;                // prescribed values, per constrained dof (this step)
+  int step_ = 0;                              // the load step being solved
   SystemObserver observer_;
 };
 
 // Rigid-body modes of the space (translations, rotations about the origin) interpolated in
 // its basis and orthonormalised: the near-null space handed to AMG.
-MatNullSpace rigid_body_modes(MPI_Comm comm, const fem::FieldSpace& space);
+// n_extra zero entries follow (the multipliers of a contact system).
+MatNullSpace rigid_body_modes(MPI_Comm comm, const fem::FieldSpace& space, int n_extra = 0);
 
 }  // namespace stiction::nonlinear

@@ -27,6 +27,9 @@ struct NewtonSystem {
   // and alpha of MHP (11), so a preconditioner can use S_p ~ alpha M_p.
   PetscMat pressure_mass;
   double pressure_schur_scale = 0;
+  // Contact systems only: the mass-matrix part Pi M_lambda Pi of the Schur approximation
+  // (32) on the lambda block's numbering (see MultiplierConstraint::schur_mass).
+  PetscMat multiplier_schur_mass;
 
   const FieldBlock* field(const std::string& name) const {
     for (const auto& f : fields)

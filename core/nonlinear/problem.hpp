@@ -7,6 +7,7 @@
 
 #include "fem/field_space.hpp"
 #include "materials/material.hpp"
+#include "nonlinear/multiplier_constraint.hpp"
 
 namespace stiction::nonlinear {
 
@@ -32,6 +33,8 @@ struct ElasticityProblem {
   std::vector<DirichletCondition> dirichlet;
   std::vector<TractionLoad> tractions;
   StepField body_force;  // per reference volume; may be empty
+  // Contact pairs (owned by the scene); their multipliers follow u (and p) in the system.
+  std::vector<MultiplierConstraint*> constraints;
   int n_steps = 1;
 };
 

@@ -3,11 +3,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "common/error.hpp"
+#include "contact/rigid_plane_contact.hpp"
 #include "mesh/gmsh_io.hpp"
 
 namespace stiction::scene {
@@ -18,7 +20,7 @@ using VT = ValueType;
 
 // Every key of a scene file, with its type, default and a one-line doc.
 struct Schemas {
-  TableSpec scene_meta, material, mesh, body, dirichlet, traction, body_force, load, newton, output, root;
+  TableSpec scene_meta, material, mesh, body, dirichlet, traction, body_force, contact, load, newton, output, root;
   Schemas() {
     scene_meta = {"scene",
                   {{"name", VT::String, "scene name (defaults to the file name)", false, std::string()},
@@ -43,6 +45,9 @@ struct Schemas {
              {"points", VT::FloatArray, "'polygon': corners x0, y0, x1, y1, ... counter-clockwise", false},
              {"sides", VT::StringArray, "'polygon': boundary name of each side (side i joins point i to i+1)", false},
              {"thickness", VT::Float, "'polygon': extrusion along z for a 3D body (faces 'front', 'back')", false},
+             {"point_sizes", VT::FloatArray, "'polygon': element size at each point (grading; each <= h)", false},
+             {"arc_sides", VT::FloatArray, "'polygon': sides that are circular arcs (re-meshed per level)", false},
+             {"arc_centers", VT::FloatArray, "'polygon': centre x, y of each arc side", false},
              {"size", VT::FloatArray, "box side lengths [lx, ly] (2D) or [lx, ly, lz] (3D)", false},
              {"h", VT::Float, "target element size for the 'box' and 'polygon' generators (Gmsh)", false},
              {"cells", VT::FloatArray, "cells per side for 'structured-box'", false}}};
@@ -64,6 +69,21 @@ struct Schemas {
     body_force = {"body_force",
                   {{"value", VT::FloatArray, "final body force per reference volume", true},
                    {"schedule", VT::FloatArray, "factor on value at each step (default k/steps)", false}}};
+    contact = {"contact",
+               {{"name", VT::String, "name in reports (default contact-<k>)", false, std::string()},
+                {"body", VT::String, "slave body (optional with one body)", false},
+                {"boundary", VT::String, "slave boundary name of the body (carries the multiplier)", true},
+                {"master", VT::String, "what the slave touches", true, {}, {"plane"}},
+                {"point", VT::FloatArray, "'plane': a point of the plane at step 0", false},
+                {"normal", VT::FloatArray, "'plane': normal pointing towards the slave body", false},
+                {"motion", VT::FloatArray, "'plane': final rigid translation of the plane", false},
+                {"schedule", VT::FloatArray, "factor on motion at each step (default k/steps)", false},
+                {"friction", VT::Float, "Coulomb coefficient mu (0: frictionless)", false, 0.0},
+                {"gap_tolerance", VT::Float, "state machine: penetration tolerance, relative to the slave size",
+                 false, 1e-9},
+                {"force_tolerance", VT::Float, "state machine: tension tolerance on lambda_n, relative to E", false,
+                 1e-9},
+                {"tangential_penalty", VT::Float, "initial r_t of (19), in units of E / (h m_i)", false, 1.0}}};
     load = {"load", {{"steps", VT::Integer, "number of quasi-static load steps", false, std::int64_t{1}}}};
     newton = {"newton",
               {{"atol", VT::Float, "absolute tolerance on the free residual norm", false, 1e-10},
@@ -83,6 +103,7 @@ struct Schemas {
              {"dirichlet", VT::TableArray, "prescribed displacements", false, {}, {}, &dirichlet},
              {"traction", VT::TableArray, "prescribed tractions", false, {}, {}, &traction},
              {"body_force", VT::Table, "volume load", false, {}, {}, &body_force},
+             {"contact", VT::TableArray, "contact pairs (paper Sec. 4)", false, {}, {}, &contact},
              {"load", VT::Table, "load stepping", false, {}, {}, &load},
              {"newton", VT::Table, "Newton settings", false, {}, {}, &newton},
              {"output", VT::Table, "what `stiction solve` writes", false, {}, {}, &output}}};
@@ -133,8 +154,9 @@ std::unique_ptr<materials::Material> make_material(const toml::table& t, const s
   }
 }
 
+// `refined` is set when the generator already produced the mesh at `level`.
 mesh::Mesh make_body_mesh(const toml::table& t, const std::string& file, const std::string& base_dir,
-                          const std::string& body) {
+                          const std::string& body, int level, bool* refined) {
   const auto& S = schemas().mesh;
   const bool has_file = t.contains("file"), has_gen = t.contains("generator");
   if (has_file == has_gen)
@@ -147,8 +169,25 @@ mesh::Mesh make_body_mesh(const toml::table& t, const std::string& file, const s
   const std::string gen = get_string(t, S, "generator");
   if (gen == "polygon") {
     if (!t.contains("h")) throw Error(fmt::format("{}: body '{}': the 'polygon' generator needs mesh.h", file, body));
-    return mesh::generate_polygon(get_floats(t, "points"), get_strings(t, "sides"), get_float(t, S, "h"),
-                                  t.contains("thickness") ? get_float(t, S, "thickness") : 0.0);
+    mesh::PolygonSpec spec;
+    spec.xy = get_floats(t, "points");
+    spec.names = get_strings(t, "sides");
+    spec.h = get_float(t, S, "h");
+    spec.thickness = t.contains("thickness") ? get_float(t, S, "thickness") : 0.0;
+    spec.point_sizes = get_floats(t, "point_sizes");
+    const auto arc_sides = get_floats(t, "arc_sides"), centres = get_floats(t, "arc_centers");
+    if (centres.size() != 2 * arc_sides.size())
+      throw Error(fmt::format("{}: body '{}': arc_centers needs x, y for each of the {} arc sides", file, body,
+                              arc_sides.size()));
+    for (size_t k = 0; k < arc_sides.size(); ++k)
+      spec.arc_centers[static_cast<int>(arc_sides[k])] = {centres[2 * k], centres[2 * k + 1]};
+    // Curved sides: a refined level is a new Gmsh mesh with sizes / 2^level, so the mesh
+    // converges to the arcs; red refinement would keep the level-0 chords.
+    if (!spec.arc_centers.empty()) {
+      spec.scale = std::ldexp(1.0, -level);
+      *refined = true;
+    }
+    return mesh::generate_polygon(spec);
   }
   const auto size = get_floats(t, "size");
   if (size.size() != 2 && size.size() != 3)
@@ -211,6 +250,51 @@ Boundary boundary_of(const Scene& s, const toml::table& t, const std::string& fi
                           known.empty() ? "none" : known));
 }
 
+std::array<double, 3> three(const std::vector<double>& v, int dim, const std::string& where) {
+  if (static_cast<int>(v.size()) != dim) throw Error(fmt::format("{} needs {} entries", where, dim));
+  std::array<double, 3> a{0, 0, 0};
+  std::copy(v.begin(), v.end(), a.begin());
+  return a;
+}
+
+std::unique_ptr<nonlinear::MultiplierConstraint> make_contact(const Scene& s, const toml::table& t,
+                                                              const std::string& file, const std::string& what,
+                                                              const std::vector<const materials::Material*>& body_material,
+                                                              int n_steps) {
+  const auto& S = schemas().contact;
+  const int dim = s.mesh.dim;
+  const Boundary slave = boundary_of(s, t, file, what);
+  std::string name = get_string(t, S, "name");
+  if (name.empty()) name = what;
+  for (const char* key : {"point", "normal"})
+    if (!t.contains(key)) throw Error(fmt::format("{}: {}: master 'plane' needs key '{}'", file, what, key));
+  contact::RigidPlane plane;
+  plane.point = three(get_floats(t, "point"), dim, fmt::format("{}: {}: point", file, what));
+  plane.normal = three(get_floats(t, "normal"), dim, fmt::format("{}: {}: normal", file, what));
+  if (t.contains("motion")) {
+    const auto motion = get_floats(t, "motion");
+    three(motion, dim, fmt::format("{}: {}: motion", file, what));
+    auto field = scheduled_constant(motion, schedule_of(t, n_steps, file, what));
+    plane.motion = [field](int step, double* out) { field(nullptr, step, out); };
+  }
+  contact::ContactSettings cs;
+  cs.friction = get_float(t, S, "friction");
+  cs.gap_tolerance = get_float(t, S, "gap_tolerance");
+  cs.force_tolerance = get_float(t, S, "force_tolerance");
+  cs.tangential_penalty = get_float(t, S, "tangential_penalty");
+  if (cs.friction < 0 || cs.gap_tolerance < 0 || cs.force_tolerance < 0 || !(cs.tangential_penalty > 0))
+    throw Error(fmt::format("{}: {}: friction and tolerances must be >= 0, tangential_penalty > 0", file, what));
+  // The slave body (its boundary name is "body/boundary") gives the stiffness scale.
+  const std::string body = slave.name.substr(0, slave.name.find('/'));
+  const auto it = std::find(s.body_names.begin(), s.body_names.end(), body);
+  cs.modulus = body_material[static_cast<size_t>(it - s.body_names.begin())]->reference_modulus();
+  try {
+    return std::make_unique<contact::RigidPlaneContact>(name, *s.space, slave.tag, plane, cs);
+  } catch (const Error& e) {
+    throw Error(fmt::format("{}: {}: {}", file, what, e.what()));
+  }
+}
+
 }  // namespace
 
 const TableSpec& scene_schema() { return schemas().root; }
@@ -252,7 +336,9 @@ std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& o
       throw Error(fmt::format("{}: body '{}' declared twice", origin, name));
     auto mi = material_index.find(mat);
     if (mi == material_index.end()) throw Error(fmt::format("{}: body '{}' uses unknown material '{}'", origin, name, mat));
-    mesh::Mesh m = mesh::refine(make_body_mesh(sub(*b, "mesh"), origin, base_dir, name), s.level);
+    bool refined = false;
+    mesh::Mesh m = make_body_mesh(sub(*b, "mesh"), origin, base_dir, name, s.level, &refined);
+    if (!refined) m = mesh::refine(m, s.level);
     mesh::check_validity(m, fmt::format("{}: body '{}' mesh", origin, name));
     mesh::append(s.mesh, m, name);
     s.body_of_cell.insert(s.body_of_cell.end(), m.n_cells(), static_cast<int>(s.body_names.size()));
@@ -320,6 +406,14 @@ std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& o
     if (static_cast<int>(value.size()) != dim)
       throw Error(fmt::format("{}: body_force.value needs {} entries", origin, dim));
     P.body_force = scheduled_constant(value, schedule_of(bf, P.n_steps, origin, "body_force"));
+  }
+
+  k = 0;
+  for (const auto* c : tables(root, "contact")) {
+    const std::string what = fmt::format("contact[{}]", k++);
+    auto pair = make_contact(s, *c, origin, what, body_material, P.n_steps);
+    P.constraints.push_back(pair.get());
+    s.contacts.push_back(std::move(pair));
   }
 
   const toml::table& nw = sub(root, "newton");

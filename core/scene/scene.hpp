@@ -32,6 +32,7 @@ struct Scene {
   std::vector<std::unique_ptr<materials::Material>> materials;
   std::vector<std::string> material_of_body;  // descriptions, for reports
   std::unique_ptr<fem::FieldSpace> space;
+  std::vector<std::unique_ptr<nonlinear::MultiplierConstraint>> contacts;  // problem.constraints
   nonlinear::ElasticityProblem problem;
   nonlinear::NewtonSettings newton;
   OutputSettings output;

@@ -17,6 +17,7 @@ SolvedScene solve(std::unique_ptr<scene::Scene> s, const std::string& backend) {
   nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, out.scene->problem, out.scene->newton, *solver);
   out.steps = newton.run();
   out.u = newton.displacement();
+  out.lambda = newton.multipliers();
   return out;
 }
 }  // namespace

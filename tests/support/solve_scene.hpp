@@ -13,6 +13,7 @@ namespace stiction::test {
 struct SolvedScene {
   std::unique_ptr<scene::Scene> scene;
   std::vector<double> u;
+  std::vector<double> lambda;  // contact multipliers (empty without contact)
   std::vector<nonlinear::StepResult> steps;
   bool converged() const { return !steps.empty() && steps.back().converged(); }
   // Nodal displacement of the node nearest X (vertex or edge midpoint).

@@ -1,0 +1,19 @@
+#pragma once
+// The augmented Newton matrix of a constrained problem: the assembled tangent A (n x n,
+// AIJ) bordered by sparse constraint blocks, as one AIJ matrix of size n + m that every
+// backend (direct, ILU, AMG, Schur) can take. Built by merging compressed rows, so its cost
+// is one pass over A's entries.
+#include "common/petsc.hpp"
+#include "nonlinear/multiplier_constraint.hpp"
+
+namespace stiction::nonlinear {
+
+// extra holds entries of rows/cols in [0, n + m): (u, lambda), (lambda, u) and
+// (lambda, lambda) blocks; entries inside A's block are added to A's values.
+// Every multiplier row gets a diagonal entry (possibly zero) so MatZeroRows and ILU find it.
+Mat build_augmented_matrix(Mat A, PetscInt m, const SparseEntries& extra);
+
+// A sparse m x m matrix from entries whose indices are already in [0, m).
+Mat build_sparse_matrix(MPI_Comm comm, PetscInt m, const SparseEntries& entries);
+
+}  // namespace stiction::nonlinear

@@ -1,0 +1,66 @@
+#pragma once
+// A constraint enforced by Lagrange multipliers with an active set (contact, paper Sec. 4-5).
+// The Newton driver appends its multipliers after the displacement (and pressure) unknowns
+// and solves the augmented system (30)
+//
+//   [ A     -B^T ] [du     ]   [ -r_u ]
+//   [ C_u   C_l  ] [dlambda] = [ -r_c ]
+//
+// where r_u already contains the constraint forces (-B^T lambda) and r_c the constraint
+// rows of the current states. States (inactive / stick / slip) are frozen during one linear
+// solve and updated after it; the step converges only when no state changed.
+#include <array>
+#include <string>
+#include <vector>
+
+#include <petscsys.h>
+
+namespace stiction::nonlinear {
+
+// Sparse entries (row, col, value) in the augmented numbering; duplicates are summed.
+struct SparseEntries {
+  std::vector<PetscInt> rows, cols;
+  std::vector<double> values;
+  void add(PetscInt r, PetscInt c, double v) {
+    rows.push_back(r);
+    cols.push_back(c);
+    values.push_back(v);
+  }
+  size_t size() const { return values.size(); }
+  void clear() { rows.clear(), cols.clear(), values.clear(); }
+};
+
+// What one constraint reports per load step.
+struct ConstraintSummary {
+  std::string name;
+  int inactive = 0, stick = 0, slip = 0;
+  std::array<double, 3> force{0, 0, 0};  // integral of lambda over the slave surface (F3)
+};
+
+class MultiplierConstraint {
+public:
+  virtual ~MultiplierConstraint() = default;
+  virtual std::string name() const = 0;
+  virtual int n_multipliers() const = 0;
+  // At the start of load step `step` (1-based), u is the converged state of the previous
+  // step: the reference of the tangential slip increments (15)-(16).
+  virtual void begin_step(int step, const std::vector<double>& u) = 0;
+  // Adds the constraint forces to r_u (r_u -= B^T lambda), writes the constraint rows r_c
+  // (n_multipliers entries) for the current states, and, when jacobian is not null, adds
+  // the blocks -B^T, C_u and C_l. Multiplier k of this constraint is unknown
+  // `offset + k` of the augmented system; lambda points at this constraint's multipliers.
+  virtual void evaluate(int step, const std::vector<double>& u, const double* lambda, std::vector<double>& r_u,
+                        double* r_c, SparseEntries* jacobian, PetscInt offset) const = 0;
+  // After a Newton update: applies the state machine (transitions A-E of Sec. 4.5) at the
+  // new iterate; returns how many states changed.
+  virtual int update_states(int step, const std::vector<double>& u, const double* lambda, const double* dlambda) = 0;
+  // The current states, one char per multiplier node (for cycle detection).
+  virtual std::vector<char> states() const = 0;
+  // The mass-matrix part of the Schur approximation (32), Pi M_lambda Pi: Pi projects on the
+  // constrained directions (all of them at sticking nodes, the normal at slipping nodes,
+  // none at inactive nodes). Multiplier k is row/column `offset + k`.
+  virtual void schur_mass(SparseEntries& out, PetscInt offset) const = 0;
+  virtual ConstraintSummary summary(const double* lambda) const = 0;
+};
+
+}  // namespace stiction::nonlinear

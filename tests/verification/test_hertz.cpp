@@ -1,0 +1,75 @@
+// Hertz contact in plane strain (built-in scene hertz-cylinder-2d): an elastic cylinder of
+// radius R on a rigid frictionless plane. For a total force P per unit length (twice the
+// quarter model's contact force),
+//   a = sqrt(4 P R / (pi E*)),   p0 = 2 P / (pi a) = sqrt(P E* / (pi R)),   E* = E / (1 - nu^2)
+// (Johnson, Contact Mechanics, Sec. 4.2). The computed pressure is lambda_n at the slave
+// nodes; the test reads a and p0 off the computed profile and compares them with the values
+// Hertz gives for the computed force, so the load need not be known in advance.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "contact/rigid_plane_contact.hpp"
+#include "support/solve_scene.hpp"
+
+namespace stiction::test {
+namespace {
+
+struct HertzFigures {
+  double a_hertz = 0, p0_hertz = 0;
+  double p0 = 0;                  // lambda_n at the contact point (x = 0)
+  double last_active = 0;         // x of the outermost node in contact
+  double first_inactive = 0;      // x of the nearest node out of contact beyond it
+  double a_fit = 0;               // from p^2 = p0^2 (1 - x^2 / a^2) fitted by least squares
+};
+
+HertzFigures hertz_figures(int level) {
+  const SolvedScene s = solve_builtin("hertz-cylinder-2d", level, "lu-mumps");
+  EXPECT_TRUE(s.converged());
+  const auto& pair = dynamic_cast<const contact::RigidPlaneContact&>(*s.scene->contacts.at(0));
+  const double E = 1.0, nu = 0.3, R = 1.0, E_star = E / (1 - nu * nu);
+  const double P = 2 * s.steps.back().contact.at(0).force[1];
+  HertzFigures h;
+  h.a_hertz = std::sqrt(4 * P * R / (M_PI * E_star));
+  h.p0_hertz = 2 * P / (M_PI * h.a_hertz);
+  h.first_inactive = 1e9;
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  int n = 0;
+  for (int i = 0; i < pair.slave().n_nodes(); ++i) {
+    const double x = pair.slave().reference_position[i][0], p = s.lambda[2 * i + 1];
+    if (pair.state(i) == contact::NodeState::Inactive) continue;
+    h.last_active = std::max(h.last_active, x);
+    if (x < 1e-12) h.p0 = p;
+    sx += x * x, sy += p * p, sxx += std::pow(x, 4), sxy += x * x * p * p, ++n;
+  }
+  for (int i = 0; i < pair.slave().n_nodes(); ++i)
+    if (pair.state(i) == contact::NodeState::Inactive && pair.slave().reference_position[i][0] > h.last_active)
+      h.first_inactive = std::min(h.first_inactive, pair.slave().reference_position[i][0]);
+  const double beta = (n * sxy - sx * sy) / (n * sxx - sx * sx), alpha = (sy - beta * sx) / n;
+  h.a_fit = std::sqrt(-alpha / beta);
+  return h;
+}
+
+TEST(Hertz2D, HalfWidthAndPeakPressureConvergeToHertz) {
+  std::vector<HertzFigures> levels;
+  for (int level = 0; level <= 2; ++level) {
+    levels.push_back(hertz_figures(level));
+    const auto& h = levels.back();
+    std::printf("level %d: a Hertz %.5f, fit %.5f, bracket [%.5f, %.5f]; p0 Hertz %.5e, computed %.5e\n", level,
+                h.a_hertz, h.a_fit, h.last_active, h.first_inactive, h.p0_hertz, h.p0);
+  }
+  const auto& fine = levels.back();
+  // The edge of the contact zone lies between the last node in contact and the next one.
+  EXPECT_LE(fine.last_active, fine.a_hertz * 1.02);
+  EXPECT_GE(fine.first_inactive, fine.a_hertz * 0.98);
+  EXPECT_NEAR(fine.a_fit / fine.a_hertz, 1.0, 0.02);
+  EXPECT_NEAR(fine.p0 / fine.p0_hertz, 1.0, 0.02);
+  // Converging under refinement: the finest level is closer to Hertz than the coarsest.
+  auto err_p0 = [](const HertzFigures& h) { return std::abs(h.p0 / h.p0_hertz - 1); };
+  auto err_a = [](const HertzFigures& h) { return std::abs(h.a_fit / h.a_hertz - 1); };
+  EXPECT_LT(err_p0(fine), err_p0(levels.front()));
+  EXPECT_LT(err_a(fine), err_a(levels.front()));
+}
+
+}  // namespace
+}  // namespace stiction::test
