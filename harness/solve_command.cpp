@@ -29,6 +29,13 @@ public:
             "krylov_iterations,assembly_seconds,setup_seconds,solve_seconds,wall_seconds";
     for (const auto& bc : s.problem.dirichlet)
       for (int k = 0; k < s.mesh.dim; ++k) out_ << fmt::format(",reaction_{}_{}", bc.name, "xyz"[k]);
+    // Contact: the integral of lambda over the slave surface (F3), the final states and how
+    // many states changed over the step's Newton iterations.
+    for (const auto* c : s.problem.constraints) {
+      for (int k = 0; k < s.mesh.dim; ++k) out_ << fmt::format(",contact_{}_force_{}", c->name(), "xyz"[k]);
+      out_ << fmt::format(",contact_{0}_inactive,contact_{0}_stick,contact_{0}_slip", c->name());
+    }
+    if (!s.problem.constraints.empty()) out_ << ",state_changes";
     out_ << "\n";
     out_.flush();
   }
@@ -48,6 +55,20 @@ public:
       auto it = r.reactions.find(bc.name);
       for (int k = 0; k < s.mesh.dim; ++k)
         out_ << (it == r.reactions.end() ? std::string(",") : fmt::format(",{:.10e}", it->second[k]));
+    }
+    for (size_t c = 0; c < s.problem.constraints.size(); ++c) {
+      if (c >= r.contact.size()) {  // not converged: no contact figures
+        out_ << std::string(static_cast<size_t>(s.mesh.dim) + 3, ',');
+        continue;
+      }
+      const auto& cs = r.contact[c];
+      for (int k = 0; k < s.mesh.dim; ++k) out_ << fmt::format(",{:.10e}", cs.force[k]);
+      out_ << fmt::format(",{},{},{}", cs.inactive, cs.stick, cs.slip);
+    }
+    if (!s.problem.constraints.empty()) {
+      int changes = 0;
+      for (const auto& it : r.iterations) changes += it.state_changes;
+      out_ << fmt::format(",{}", changes);
     }
     out_ << "\n";
     out_.flush();
