@@ -18,25 +18,36 @@ void SchurSolver::configure(const nonlinear::NewtonSystem& system) {
   STICTION_PETSC(KSPGetPC(ksp(), &pc));
   hp_.setup(system.matrix, linear->is, quadratic->is, system.near_null_space, linear->block_size);
   const auto* pressure = system.field("p");
-  if (!pressure) {
-    use_as_shell(pc, hp_, "HP (10): A_ll^-1 then S~^-1 on u_q; the ll_ and qq_ solvers are listed below");
-    return;
+  const ShellPreconditioner* inner = &hp_;
+  std::string name = "HP (10): A_ll^-1 then S~^-1 on u_q; the ll_ and qq_ solvers are listed below";
+  if (pressure) {
+    if (!mhp_) mhp_ = std::make_unique<MixedPreconditioner>(system.comm, options_prefix(this->name()), hp_);
+    mhp_->setup(system.matrix, pressure->is, system.pressure_mass, system.pressure_schur_scale);
+    inner = mhp_.get();
+    name = "MHP (11): alpha M_p on p (pp_ solver), then HP (10) on u (ll_ and qq_ solvers)";
   }
-  if (!mhp_) mhp_ = std::make_unique<MixedPreconditioner>(system.comm, options_prefix(name()), hp_);
-  mhp_->setup(system.matrix, pressure->is, system.pressure_mass, system.pressure_schur_scale);
-  use_as_shell(pc, *mhp_, "MHP (11): alpha M_p on p (pp_ solver), then HP (10) on u (ll_ and qq_ solvers)");
+  if (const auto* lambda = system.field("lambda")) {
+    if (!contact_) contact_ = std::make_unique<ContactPreconditioner>(system.comm, options_prefix(this->name()));
+    contact_->setup(system.matrix, lambda->is, system.multiplier_schur_mass, *inner);
+    inner = contact_.get();
+    name = "global Schur level (33): four factors with " + std::string(pressure ? "MHP (11)" : "HP (10)") +
+           " for A^-1 and S~ = D + s Pi M_lambda Pi (32) by the ss_ solver";
+  }
+  use_as_shell(pc, *inner, name.c_str());
 }
 
 void SchurSolver::collect_setup_figures(std::map<std::string, double>& extra) const {
   add_mumps_figures(hp_.linear_solver(), "ll_", extra);
   const double c = parse_operator_complexity(setup_output());
   if (c > 0) extra["amg_operator_complexity"] = c;
+  if (contact_) extra["contact_schur_scale"] = contact_->scale();
 }
 
 std::string SchurSolver::describe() const {
   std::string text = KspSolver::describe() + "\nLinear block A_ll solver:\n" + full_view(hp_.linear_solver()) +
                      "\nQuadratic block solver:\n" + full_view(hp_.quadratic_solver());
   if (mhp_) text += "\nPressure block (alpha M_p) solver:\n" + full_view(mhp_->pressure_solver());
+  if (contact_) text += "\nContact Schur approximation (32) solver:\n" + full_view(contact_->schur_solver());
   return text;
 }
 

@@ -1,10 +1,12 @@
 #pragma once
 // The paper's nested Schur preconditioner in GMRES: HP (10) on [u_l | u_q], wrapped by MHP
-// (11) when the system has a pressure block (the contact level (33) will wrap these).
+// (11) when the system has a pressure block, and by the global contact level (33) when it
+// has a multiplier block.
 // schur-lu and schur-amg are this class with different option files (A_ll^-1 by MUMPS or
 // by one BoomerAMG cycle).
 #include <memory>
 
+#include "contact_pc.hpp"
 #include "hierarchical_pc.hpp"
 #include "ksp_solver.hpp"
 #include "mixed_pc.hpp"
@@ -17,6 +19,7 @@ public:
   std::string describe() const override;
   HierarchicalPreconditioner& hierarchical() { return hp_; }
   MixedPreconditioner* mixed() { return mhp_.get(); }  // null without a pressure block
+  ContactPreconditioner* contact() { return contact_.get(); }  // null without contact
 
 protected:
   void configure(const nonlinear::NewtonSystem& system) override;
@@ -26,6 +29,7 @@ protected:
 private:
   HierarchicalPreconditioner hp_;
   std::unique_ptr<MixedPreconditioner> mhp_;
+  std::unique_ptr<ContactPreconditioner> contact_;
 };
 
 }  // namespace stiction::solvers

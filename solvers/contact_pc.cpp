@@ -1,0 +1,116 @@
+#include "contact_pc.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdlib>
+
+#include "common/error.hpp"
+
+namespace stiction::solvers {
+
+ContactPreconditioner::ContactPreconditioner(MPI_Comm comm, const std::string& prefix) : prefix_(prefix) {
+  STICTION_PETSC(KSPCreate(comm, ksp_ss_.out()));
+  STICTION_PETSC(KSPSetOptionsPrefix(ksp_ss_, (prefix + "ss_").c_str()));
+}
+
+double ContactPreconditioner::scale_from_options(Mat M, Mat mass) const {
+  char value[64] = "auto";
+  PetscBool set;
+  STICTION_PETSC(PetscOptionsGetString(nullptr, prefix_.c_str(), "-contact_scale", value, sizeof value, &set));
+  const std::string v = value;
+  if (v != "auto") {
+    char* end;
+    const double s = std::strtod(value, &end);
+    if (*end || !(s > 0))
+      throw Error(fmt::format("-{}contact_scale: '{}' is neither 'auto' nor a positive number", prefix_, v));
+    return s;
+  }
+  // s = sum diag(B2 diag(A)^-1 (-B1)) / sum diag(Pi M Pi), over rows where the mass is nonzero.
+  PetscVec dA, dA_inv;
+  STICTION_PETSC(MatCreateVecs(M, nullptr, dA.out()));
+  STICTION_PETSC(MatGetDiagonal(M, dA));
+  Vec dA_a;
+  STICTION_PETSC(VecGetSubVector(dA, is_a_, &dA_a));
+  STICTION_PETSC(VecDuplicate(dA_a, dA_inv.out()));
+  STICTION_PETSC(VecCopy(dA_a, dA_inv));
+  STICTION_PETSC(VecRestoreSubVector(dA, is_a_, &dA_a));
+  STICTION_PETSC(VecReciprocal(dA_inv));
+  PetscMat scaled, product;
+  STICTION_PETSC(MatDuplicate(B1_, MAT_COPY_VALUES, scaled.out()));
+  STICTION_PETSC(MatDiagonalScale(scaled, dA_inv, nullptr));
+  STICTION_PETSC(MatMatMult(B2_, scaled, MAT_INITIAL_MATRIX, PETSC_DEFAULT, product.out()));
+  PetscVec dp, dm;
+  STICTION_PETSC(MatCreateVecs(mass, dm.out(), dp.out()));
+  STICTION_PETSC(MatGetDiagonal(product, dp));
+  STICTION_PETSC(MatGetDiagonal(mass, dm));
+  const PetscScalar *p, *m;
+  PetscInt n;
+  STICTION_PETSC(VecGetLocalSize(dm, &n));
+  STICTION_PETSC(VecGetArrayRead(dp, &p));
+  STICTION_PETSC(VecGetArrayRead(dm, &m));
+  double num = 0, den = 0;
+  for (PetscInt i = 0; i < n; ++i)
+    if (m[i] > 0) num -= p[i], den += m[i];
+  STICTION_PETSC(VecRestoreArrayRead(dp, &p));
+  STICTION_PETSC(VecRestoreArrayRead(dm, &m));
+  return den > 0 && num > 0 ? num / den : 1.0;
+}
+
+void ContactPreconditioner::setup(Mat M, IS multipliers, Mat schur_mass, const ShellPreconditioner& inner) {
+  if (!schur_mass) throw Error("contact preconditioner: the system has no multiplier mass", ErrorKind::Internal);
+  inner_ = &inner;
+  PetscInt first;
+  STICTION_PETSC(ISGetMinMax(multipliers, &first, nullptr));
+  STICTION_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(multipliers)));
+  *is_l_.out() = multipliers;
+  STICTION_PETSC(ISCreateStride(PetscObjectComm(reinterpret_cast<PetscObject>(M)), first, 0, 1, is_a_.out()));
+  // The contact blocks change pattern with the active set: extracted afresh every time.
+  STICTION_PETSC(MatCreateSubMatrix(M, is_a_, is_l_, MAT_INITIAL_MATRIX, B1_.out()));
+  STICTION_PETSC(MatCreateSubMatrix(M, is_l_, is_a_, MAT_INITIAL_MATRIX, B2_.out()));
+  STICTION_PETSC(MatCreateSubMatrix(M, is_l_, is_l_, MAT_INITIAL_MATRIX, D_.out()));
+  scale_ = scale_from_options(M, schur_mass);
+  STICTION_PETSC(MatDuplicate(D_, MAT_COPY_VALUES, S_.out()));
+  STICTION_PETSC(MatAXPY(S_, scale_, schur_mass, DIFFERENT_NONZERO_PATTERN));
+  STICTION_PETSC(KSPSetOperators(ksp_ss_, S_, S_));
+  STICTION_PETSC(KSPSetFromOptions(ksp_ss_));
+  STICTION_PETSC(KSPSetUp(ksp_ss_));
+  STICTION_PETSC(MatCreateVecs(M, work_.out(), work2_.out()));
+  STICTION_PETSC(MatCreateVecs(D_, work_l_.out(), nullptr));
+  STICTION_PETSC(MatCreateVecs(B1_, nullptr, work_a_.out()));
+}
+
+void ContactPreconditioner::set_schur_operator(Mat S) {
+  STICTION_PETSC(KSPSetOperators(ksp_ss_, S, S));
+  STICTION_PETSC(KSPSetUp(ksp_ss_));
+}
+
+Mat ContactPreconditioner::block(int row, int col) const {
+  if (row == 0) return col == 1 ? B1_.get() : nullptr;
+  return col == 0 ? B2_.get() : D_.get();
+}
+
+void ContactPreconditioner::apply(Vec r, Vec x) const {
+  // y = P_A^-1 r_a (in work_'s a part)
+  STICTION_PETSC(VecZeroEntries(work_));
+  inner_->apply(r, work_);
+  Vec y_a, r_l, x_l;
+  STICTION_PETSC(VecGetSubVector(work_, is_a_, &y_a));
+  STICTION_PETSC(MatMult(B2_, y_a, work_l_));
+  STICTION_PETSC(VecRestoreSubVector(work_, is_a_, &y_a));
+  STICTION_PETSC(VecGetSubVector(r, is_l_, &r_l));
+  STICTION_PETSC(VecAYPX(work_l_, -1.0, r_l));  // r_lambda - B2 y
+  STICTION_PETSC(VecRestoreSubVector(r, is_l_, &r_l));
+  STICTION_PETSC(VecGetSubVector(x, is_l_, &x_l));
+  STICTION_PETSC(KSPSolve(ksp_ss_, work_l_, x_l));  // x_lambda = S~^-1 (...)
+  STICTION_PETSC(MatMult(B1_, x_l, work_a_));
+  STICTION_PETSC(VecRestoreSubVector(x, is_l_, &x_l));
+  // x_a = P_A^-1 (r_a - B1 x_lambda)
+  STICTION_PETSC(VecCopy(r, work2_));
+  Vec w_a;
+  STICTION_PETSC(VecGetSubVector(work2_, is_a_, &w_a));
+  STICTION_PETSC(VecAXPY(w_a, -1.0, work_a_));
+  STICTION_PETSC(VecRestoreSubVector(work2_, is_a_, &w_a));
+  inner_->apply(work2_, x);
+}
+
+}  // namespace stiction::solvers
