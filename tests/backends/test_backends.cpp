@@ -57,6 +57,9 @@ BackendRun run(const std::string& scene_name, const std::string& backend,
                nonlinear::Forcing forcing = nonlinear::Forcing::Fixed) {
   auto s = make_scene(scene_name);
   s->newton.rtol = 1e-10;
+  // Contact forces of the Hertz scene are ~1e-3: the default atol (1e-10) would stop at a
+  // relative residual of 1e-7 there; 1e-12 is 1e-9 of them.
+  if (!s->problem.constraints.empty()) s->newton.atol = 1e-12;
   s->newton.forcing = forcing;
   auto solver = solvers::create_solver(backend, PETSC_COMM_WORLD);
   nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, s->problem, s->newton, *solver);
@@ -88,11 +91,18 @@ class EveryBackend : public ::testing::TestWithParam<std::tuple<std::string, std
 
 TEST_P(EveryBackend, SameSolutionAsLuMumps) {
   const auto& [scene_name, backend] = GetParam();
+  if (scene_name == "hertz-cylinder-2d" && backend == "boomeramg")
+    GTEST_SKIP() << "BoomerAMG cannot set up on the contact saddle-point system (zero diagonal on the multiplier "
+                    "rows); the iteration baseline guards that it fails with a named reason";
   const BackendRun& ref = reference(scene_name);
   const BackendRun r = run(scene_name, backend);
   ASSERT_EQ(r.newton_per_step.size(), ref.newton_per_step.size());
+  // Contact: inexact Krylov solves (rtol 1e-4) perturb the active-set path; measured +2
+  // Newton iterations per step on hertz-cylinder-2d against the exact solve (see the issue
+  // note); elsewhere the counts stay within one.
+  const int allowance = scene_name == "hertz-cylinder-2d" ? 2 : 1;
   for (size_t k = 0; k < ref.newton_per_step.size(); ++k)
-    EXPECT_LE(std::abs(r.newton_per_step[k] - ref.newton_per_step[k]), 1) << "load step " << k + 1;
+    EXPECT_LE(std::abs(r.newton_per_step[k] - ref.newton_per_step[k]), allowance) << "load step " << k + 1;
   double diff = 0, norm = 0;
   for (size_t i = 0; i < ref.u.size(); ++i) {
     diff += std::pow(r.u[i] - ref.u[i], 2);
@@ -102,7 +112,7 @@ TEST_P(EveryBackend, SameSolutionAsLuMumps) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, EveryBackend,
-                         ::testing::Combine(::testing::Values("cantilever-2d", "small-block"),
+                         ::testing::Combine(::testing::Values("cantilever-2d", "small-block", "hertz-cylinder-2d"),
                                             ::testing::ValuesIn(available_backends())),
                          [](const auto& info) {
                            std::string n = std::get<0>(info.param) + "_" + std::get<1>(info.param);
