@@ -108,7 +108,7 @@ void RigidPlaneContact::evaluate(int step, const std::vector<double>& u, const d
       } else {
         const double lambda_n = n.dot(lam);
         const Vec3 lambda_t = I_t * lam;
-        const Vec3 a = lambda_t + r_t_[i] * gt;
+        const Vec3 a = lambda_t - r_t_[i] * gt;
         const double a_norm = a.norm();
         Vec3 a_hat = Vec3::Zero();
         Mat3 K = Mat3::Zero();
@@ -116,9 +116,9 @@ void RigidPlaneContact::evaluate(int step, const std::vector<double>& u, const d
           a_hat = a / a_norm;
           K = mu * lambda_n * (Mat3::Identity() - a_hat * a_hat.transpose()) / a_norm;
         }
-        c_i = n * gn + lambda_t + mu * lambda_n * a_hat;
+        c_i = n * gn + lambda_t - mu * lambda_n * a_hat;
         dc_du = n * n.transpose() + r_t_[i] * K * I_t;
-        dc_dl = I_t + mu * a_hat * n.transpose() + K * I_t;
+        dc_dl = I_t - mu * a_hat * n.transpose() - K * I_t;
       }
     }
     for (int c = 0; c < d; ++c) r_c[i * d + c] = c_i[c];

@@ -11,12 +11,19 @@
 // and the row c_i of (30) by state:
 //   inactive  c_i = lambda_i                                        (R_SC lambda = 0)
 //   stick     c_i = n gn_i + gt_i                                   (R_A: no slip)
-//   slip      c_i = n gn_i + lambda_t + mu lambda_n a / |a|,  a = lambda_t + r_t gt_i   (19)
-// The traction on the slave is +lambda (so lambda_n >= 0 presses), r_u -= B^T lambda.
+//   slip      c_i = n gn_i + lambda_t - mu lambda_n a / |a|,  a = lambda_t - r_t gt_i   (19)
+// The traction on the slave is +lambda (so lambda_n >= 0 presses), r_u -= B^T lambda, and
+// friction opposes the slip: lambda_t = -mu lambda_n gt / |gt| while sliding (17)-(18).
+//
+// Sign of the augmentation (choice): (19) as printed, lambda_t = -mu lambda_n a/|a| with
+// a = lambda_t + r_t gt, is consistent only while r_t |gt| > mu lambda_n (otherwise it asks
+// lambda_t to point against itself). Written as the projection of lambda_t - r_t gt on the
+// Coulomb disc (Alart & Curnier), the slip row is consistent for every r_t > 0, and r_t only
+// steers the Newton path (adapted as in Sec. 4.4).
 //
 // Linearisation of the slip row (the paper's (23) is garbled; derived here, states and r_t
 // frozen): with K = mu lambda_n (I - a^ a^T) / |a|,
-//   d c_i = n (n . B du) + r_t K I_t B du + (I_t + mu a^ n^T + K I_t) d lambda_i
+//   d c_i = n (n . B du) + r_t K I_t B du + (I_t - mu a^ n^T - K I_t) d lambda_i
 // "I_t" is the paper's diagonal term, "mu a^ n^T" its elongation E^C by d lambda_n, and
 // K I_t (B du) its angular correction I^perp_t B_t. For a plane the normal does not vary,
 // so these blocks are the exact Jacobian (checked against finite differences in tests).
