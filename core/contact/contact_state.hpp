@@ -11,8 +11,9 @@
 // Choice for C: the paper tests "gn > 0 and lambda_n <= 0", but a contact node's weighted
 // gap is zero after every solve (its row of (30) enforces it exactly), so the gap half of
 // the test never fires; the dual test on lambda_n alone is the primal-dual active set of
-// Hueber & Wohlmuth. The tolerances are scene settings (contact.*_tolerance), measured in
-// tests/unit/contact.
+// Hueber & Wohlmuth. The tolerances are scene settings (contact.*_tolerance); their effect
+// on the state changes per Newton step is not yet measured (tests/unit/contact checks the
+// transitions only).
 #include <string>
 
 namespace stiction::contact {

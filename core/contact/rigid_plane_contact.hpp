@@ -70,7 +70,6 @@ public:
   const SlaveSurface& slave() const { return slave_; }
   NodeState state(int node) const { return state_[node]; }
   void set_state(int node, NodeState s) { state_[node] = s; }  // for tests
-  double tangential_penalty(int node) const { return r_t_[node]; }
 
   // Weighted gap gn_i and slip increment g_i of node i at displacement u (step `step`).
   double weighted_gap(int step, const std::vector<double>& u, int i) const;
