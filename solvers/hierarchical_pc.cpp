@@ -58,8 +58,10 @@ void HierarchicalPreconditioner::setup(Mat A, IS linear, IS quadratic, MatNullSp
   STICTION_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(quadratic)));
   *is_l_.out() = linear;
   *is_q_.out() = quadratic;
-  // Reuse the sub-matrices' storage when the pattern is unchanged (every Newton step).
-  const MatReuse reuse = A_ll_ ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX;
+  // Reuse the sub-matrices' storage while the pattern is unchanged (every Newton step
+  // without contact; a contact system's pattern moves with the projections).
+  const MatReuse reuse = A_ll_ && pattern_ == pattern_key(A) ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX;
+  pattern_ = pattern_key(A);
   Mat ll = A_ll_, ql = A_ql_, qq = A_qq_;
   STICTION_PETSC(MatCreateSubMatrix(A, linear, linear, reuse, &ll));
   STICTION_PETSC(MatCreateSubMatrix(A, quadratic, linear, reuse, &ql));
@@ -71,8 +73,8 @@ void HierarchicalPreconditioner::setup(Mat A, IS linear, IS quadratic, MatNullSp
   }
   if (form_ == SchurForm::Full) {
     Mat lq = A_lq_;
-    STICTION_PETSC(MatCreateSubMatrix(A, linear, quadratic, A_lq_ ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &lq));
-    if (!A_lq_) *A_lq_.out() = lq;
+    STICTION_PETSC(MatCreateSubMatrix(A, linear, quadratic, reuse == MAT_REUSE_MATRIX && A_lq_ ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &lq));
+    if (lq != A_lq_.get()) *A_lq_.out() = lq;
   }
   STICTION_PETSC(MatSetBlockSize(A_ll_, block_size));  // hypre's nodal coarsening needs it
   if (near_null_space) {

@@ -56,6 +56,7 @@ private:
   PetscKSP ksp_ll_, ksp_qq_;
   PetscIS is_l_, is_q_;
   PetscMat A_ll_, A_lq_, A_ql_, A_qq_;
+  PatternKey pattern_;  // of the matrix the blocks were extracted from
   PetscVec work_q_, work_l_, work_l2_;
   SchurForm form_ = SchurForm::Lower;
 };

@@ -22,13 +22,17 @@ void MixedPreconditioner::setup(Mat A, IS pressure, Mat pressure_mass, double al
     *is_p_.out() = pressure;
     STICTION_PETSC(ISCreateStride(PetscObjectComm(reinterpret_cast<PetscObject>(A)), first, 0, 1, is_u_.out()));
   }
-  const MatReuse reuse = A_up_ ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX;
+  const bool first_setup = !A_up_;
+  const MatReuse reuse = !first_setup && pattern_ == pattern_key(A) ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX;
+  pattern_ = pattern_key(A);
   Mat up = A_up_, pu = A_pu_;
   STICTION_PETSC(MatCreateSubMatrix(A, is_u_, is_p_, reuse, &up));
   STICTION_PETSC(MatCreateSubMatrix(A, is_p_, is_u_, reuse, &pu));
   if (reuse == MAT_INITIAL_MATRIX) {
     *A_up_.out() = up;
     *A_pu_.out() = pu;
+  }
+  if (first_setup) {
     // S~ = alpha M_p is constant: built once.
     STICTION_PETSC(MatDuplicate(pressure_mass, MAT_COPY_VALUES, S_.out()));
     STICTION_PETSC(MatScale(S_, alpha));

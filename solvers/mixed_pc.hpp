@@ -34,6 +34,7 @@ private:
   PetscKSP ksp_pp_;
   PetscIS is_u_, is_p_;
   PetscMat A_up_, A_pu_, S_;
+  PatternKey pattern_;  // of the matrix the coupling blocks were extracted from
   PetscVec work_, work2_, work_p_, work_u_;
   SchurForm form_ = SchurForm::Upper;
 };

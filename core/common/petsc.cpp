@@ -38,4 +38,11 @@ std::string petsc_version_string() {
   return buf;
 }
 
+PatternKey pattern_key(Mat A) {
+  PatternKey k;
+  STICTION_PETSC(PetscObjectGetId(reinterpret_cast<PetscObject>(A), &k.id));
+  STICTION_PETSC(MatGetNonzeroState(A, &k.state));
+  return k;
+}
+
 }  // namespace stiction

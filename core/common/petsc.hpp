@@ -65,4 +65,15 @@ public:
 
 std::string petsc_version_string();
 
+// Identity of a matrix's nonzero pattern: the object (PETSc never reuses an object id) and
+// its nonzero state (bumped whenever the pattern changes). Sub-matrices may be extracted
+// with MAT_REUSE_MATRIX only while this key is unchanged: a contact system is rebuilt with
+// a new pattern whenever the projections or the active set move.
+struct PatternKey {
+  PetscInt64 id = -1;
+  PetscObjectState state = -1;
+  bool operator==(const PatternKey&) const = default;
+};
+PatternKey pattern_key(Mat A);
+
 }  // namespace stiction
