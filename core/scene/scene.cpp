@@ -10,6 +10,7 @@
 
 #include "common/error.hpp"
 #include "contact/rigid_plane_contact.hpp"
+#include "contact/surface_contact.hpp"
 #include "mesh/gmsh_io.hpp"
 
 namespace stiction::scene {
@@ -73,7 +74,12 @@ struct Schemas {
                {{"name", VT::String, "name in reports (default contact-<k>)", false, std::string()},
                 {"body", VT::String, "slave body (optional with one body)", false},
                 {"boundary", VT::String, "slave boundary name of the body (carries the multiplier)", true},
-                {"master", VT::String, "what the slave touches", true, {}, {"plane"}},
+                {"master", VT::String, "what the slave touches: a rigid plane or a deformable surface", true, {},
+                 {"plane", "surface"}},
+                {"master_body", VT::String, "'surface': body of the master boundary (default: the slave body)", false},
+                {"master_boundary", VT::String, "'surface': master boundary name of that body", false},
+                {"search_radius", VT::Float, "'surface': farthest projection counted (default 2x longest master facet)",
+                 false, 0.0},
                 {"point", VT::FloatArray, "'plane': a point of the plane at step 0", false},
                 {"normal", VT::FloatArray, "'plane': normal pointing towards the slave body", false},
                 {"motion", VT::FloatArray, "'plane': final rigid translation of the plane", false},
@@ -83,7 +89,11 @@ struct Schemas {
                  false, 1e-9},
                 {"force_tolerance", VT::Float, "state machine: tension tolerance on lambda_n, relative to E", false,
                  1e-9},
-                {"tangential_penalty", VT::Float, "initial r_t of (19), in units of E / (h m_i)", false, 1.0}}};
+                {"tangential_penalty", VT::Float, "initial r_t of (19), in units of E / (h m_i)", false, 1.0},
+                {"normal_linearisation", VT::String,
+                 "'surface': the nodal normals' variation in the Jacobian: always, never (the paper), or once the "
+                 "states settled",
+                 false, std::string("settled"), {"exact", "dropped", "settled"}}}};
     load = {"load", {{"steps", VT::Integer, "number of quasi-static load steps", false, std::int64_t{1}}}};
     newton = {"newton",
               {{"atol", VT::Float, "absolute tolerance on the free residual norm", false, 1e-10},
@@ -232,14 +242,14 @@ struct Boundary {
   std::string name;  // "body/boundary"
 };
 
-Boundary boundary_of(const Scene& s, const toml::table& t, const std::string& file, const std::string& what) {
-  std::string body = t["body"].value<std::string>().value_or("");
+// The boundary `boundary` of body `body` (empty: the only body).
+Boundary find_boundary(const Scene& s, std::string body, const std::string& boundary, const std::string& file,
+                       const std::string& what) {
   if (body.empty()) {
     if (s.body_names.size() != 1)
       throw Error(fmt::format("{}: {}: name the body (the scene has {} bodies)", file, what, s.body_names.size()));
     body = s.body_names[0];
   }
-  const std::string boundary = t["boundary"].value<std::string>().value_or("");
   const std::string key = body + "/" + boundary;
   auto it = s.mesh.facet_tag_names.find(key);
   if (it != s.mesh.facet_tag_names.end()) return {it->second, key};
@@ -250,6 +260,11 @@ Boundary boundary_of(const Scene& s, const toml::table& t, const std::string& fi
                           known.empty() ? "none" : known));
 }
 
+Boundary boundary_of(const Scene& s, const toml::table& t, const std::string& file, const std::string& what) {
+  return find_boundary(s, t["body"].value<std::string>().value_or(""), t["boundary"].value<std::string>().value_or(""),
+                       file, what);
+}
+
 std::array<double, 3> three(const std::vector<double>& v, int dim, const std::string& where) {
   if (static_cast<int>(v.size()) != dim) throw Error(fmt::format("{} needs {} entries", where, dim));
   std::array<double, 3> a{0, 0, 0};
@@ -257,15 +272,8 @@ std::array<double, 3> three(const std::vector<double>& v, int dim, const std::st
   return a;
 }
 
-std::unique_ptr<nonlinear::MultiplierConstraint> make_contact(const Scene& s, const toml::table& t,
-                                                              const std::string& file, const std::string& what,
-                                                              const std::vector<const materials::Material*>& body_material,
-                                                              int n_steps) {
-  const auto& S = schemas().contact;
-  const int dim = s.mesh.dim;
-  const Boundary slave = boundary_of(s, t, file, what);
-  std::string name = get_string(t, S, "name");
-  if (name.empty()) name = what;
+contact::RigidPlane make_plane(const toml::table& t, int dim, const std::string& file, const std::string& what,
+                               int n_steps) {
   for (const char* key : {"point", "normal"})
     if (!t.contains(key)) throw Error(fmt::format("{}: {}: master 'plane' needs key '{}'", file, what, key));
   contact::RigidPlane plane;
@@ -277,19 +285,47 @@ std::unique_ptr<nonlinear::MultiplierConstraint> make_contact(const Scene& s, co
     auto field = scheduled_constant(motion, schedule_of(t, n_steps, file, what));
     plane.motion = [field](int step, double* out) { field(nullptr, step, out); };
   }
+  return plane;
+}
+
+std::unique_ptr<nonlinear::MultiplierConstraint> make_contact(const Scene& s, const toml::table& t,
+                                                              const std::string& file, const std::string& what,
+                                                              const std::vector<const materials::Material*>& body_material,
+                                                              int n_steps) {
+  const auto& S = schemas().contact;
+  const Boundary slave = boundary_of(s, t, file, what);
+  const std::string slave_body = slave.name.substr(0, slave.name.find('/'));
+  std::string name = get_string(t, S, "name");
+  if (name.empty()) name = what;
+  const std::string master = get_string(t, S, "master");
+  const std::vector<std::string> plane_keys{"point", "normal", "motion", "schedule"},
+      surface_keys{"master_body", "master_boundary", "search_radius", "normal_linearisation"};
+  for (const std::string& key : master == "plane" ? surface_keys : plane_keys)
+    if (t.contains(key))
+      throw Error(fmt::format("{}: {}: key '{}' does not apply to master '{}'", file, what, key, master));
   contact::ContactSettings cs;
   cs.friction = get_float(t, S, "friction");
   cs.gap_tolerance = get_float(t, S, "gap_tolerance");
   cs.force_tolerance = get_float(t, S, "force_tolerance");
   cs.tangential_penalty = get_float(t, S, "tangential_penalty");
+  const std::string normals = get_string(t, S, "normal_linearisation");
+  using NL = contact::ContactSettings::NormalLinearisation;
+  cs.normal_linearisation = normals == "exact" ? NL::Exact : normals == "dropped" ? NL::Dropped : NL::Settled;
   if (cs.friction < 0 || cs.gap_tolerance < 0 || cs.force_tolerance < 0 || !(cs.tangential_penalty > 0))
     throw Error(fmt::format("{}: {}: friction and tolerances must be >= 0, tangential_penalty > 0", file, what));
-  // The slave body (its boundary name is "body/boundary") gives the stiffness scale.
-  const std::string body = slave.name.substr(0, slave.name.find('/'));
-  const auto it = std::find(s.body_names.begin(), s.body_names.end(), body);
+  // The slave body gives the stiffness scale.
+  const auto it = std::find(s.body_names.begin(), s.body_names.end(), slave_body);
   cs.modulus = body_material[static_cast<size_t>(it - s.body_names.begin())]->reference_modulus();
   try {
-    return std::make_unique<contact::RigidPlaneContact>(name, *s.space, slave.tag, plane, cs);
+    if (master == "plane")
+      return std::make_unique<contact::RigidPlaneContact>(name, *s.space, slave.tag,
+                                                          make_plane(t, s.mesh.dim, file, what, n_steps), cs);
+    if (!t.contains("master_boundary"))
+      throw Error(fmt::format("master 'surface' needs key 'master_boundary'"));
+    std::string master_body = t["master_body"].value<std::string>().value_or(slave_body);
+    const Boundary m = find_boundary(s, master_body, get_string(t, S, "master_boundary"), file, what);
+    return std::make_unique<contact::SurfaceContact>(name, *s.space, slave.tag, m.tag, cs,
+                                                     get_float(t, S, "search_radius"));
   } catch (const Error& e) {
     throw Error(fmt::format("{}: {}: {}", file, what, e.what()));
   }

@@ -2,6 +2,8 @@
 // lu-mumps (relative difference < 1e-8) with Newton iteration counts within +-1 per step.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <map>
 
@@ -47,6 +49,7 @@ struct BackendRun {
   std::vector<double> u;
   std::vector<int> newton_per_step;
   bool contact = false;  // the scene declares contact pairs
+  std::string failure;   // empty when every load step converged
 };
 
 std::unique_ptr<scene::Scene> make_scene(const std::string& which) {
@@ -67,8 +70,8 @@ BackendRun run(const std::string& scene_name, const std::string& backend,
   BackendRun r;
   r.contact = !s->problem.constraints.empty();
   for (const auto& step : newton.run()) {
-    EXPECT_TRUE(step.converged()) << backend << " step " << step.step << ": " << nonlinear::to_string(step.reason)
-                                  << " " << step.detail;
+    if (!step.converged() && r.failure.empty())
+      r.failure = fmt::format("{} step {}: {} {}", backend, step.step, nonlinear::to_string(step.reason), step.detail);
     r.newton_per_step.push_back(static_cast<int>(step.iterations.size()));
   }
   r.u = newton.displacement();
@@ -94,10 +97,16 @@ class EveryBackend : public ::testing::TestWithParam<std::tuple<std::string, std
 TEST_P(EveryBackend, SameSolutionAsLuMumps) {
   const auto& [scene_name, backend] = GetParam();
   const BackendRun& ref = reference(scene_name);
-  if (ref.contact && backend == "boomeramg")
-    GTEST_SKIP() << "BoomerAMG cannot set up on the contact saddle-point system (zero diagonal on the multiplier "
-                    "rows); the iteration baseline guards that it fails with a named reason";
+  ASSERT_TRUE(ref.failure.empty()) << ref.failure;
   const BackendRun r = run(scene_name, backend);
+  if (ref.contact && backend == "boomeramg" && !r.failure.empty()) {
+    // One V-cycle on the whole saddle-point system (zero diagonal on the multiplier rows)
+    // fails on most contact scenes; it must fail as a named linear-solver divergence, which
+    // the iteration baseline also guards.
+    EXPECT_NE(r.failure.find("DIVERGED_LINEAR_SOLVE"), std::string::npos) << r.failure;
+    GTEST_SKIP() << "boomeramg does not converge on this contact system: " << r.failure;
+  }
+  ASSERT_TRUE(r.failure.empty()) << r.failure;
   ASSERT_EQ(r.newton_per_step.size(), ref.newton_per_step.size());
   // Contact: inexact Krylov solves (rtol 1e-4) perturb the active-set path; measured +2
   // Newton iterations per step on hertz-cylinder-2d against the exact solve (see the issue
@@ -114,7 +123,8 @@ TEST_P(EveryBackend, SameSolutionAsLuMumps) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, EveryBackend,
-                         ::testing::Combine(::testing::Values("cantilever-2d", "small-block", "hertz-cylinder-2d"),
+                         ::testing::Combine(::testing::Values("cantilever-2d", "small-block", "hertz-cylinder-2d",
+                                                              "hertz-cylinders-2d", "contact-patch-2d", "self-contact-2d"),
                                             ::testing::ValuesIn(available_backends())),
                          [](const auto& info) {
                            std::string n = std::get<0>(info.param) + "_" + std::get<1>(info.param);

@@ -1,15 +1,17 @@
-// Hertz contact in plane strain (built-in scene hertz-cylinder-2d): an elastic cylinder of
-// radius R on a rigid frictionless plane. For a total force P per unit length (twice the
-// quarter model's contact force),
-//   a = sqrt(4 P R / (pi E*)),   p0 = 2 P / (pi a) = sqrt(P E* / (pi R)),   E* = E / (1 - nu^2)
-// (Johnson, Contact Mechanics, Sec. 4.2). The computed pressure is lambda_n at the slave
-// nodes; the test reads a and p0 off the computed profile and compares them with the values
+// Hertz contact in plane strain: an elastic cylinder of radius R on a rigid frictionless
+// plane (built-in scene hertz-cylinder-2d) and two identical cylinders, both deformable
+// (hertz-cylinders-2d). For a total force P per unit length (twice the quarter model's
+// contact force),
+//   a = sqrt(4 P R* / (pi E*)),   p0 = 2 P / (pi a) = sqrt(P E* / (pi R*))
+// with R* = R, E* = E / (1 - nu^2) on the plane and R* = R/2, E* = E / (2 (1 - nu^2)) for
+// the pair (Johnson, Contact Mechanics, Sec. 4.2). The computed pressure is |lambda| at
+// the slave nodes (frictionless: lambda = lambda_n n); the test reads a and p0 off the computed profile and compares them with the values
 // Hertz gives for the computed force, so the load need not be known in advance.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "contact/rigid_plane_contact.hpp"
+#include "contact/contact_pair.hpp"
 #include "support/solve_scene.hpp"
 
 namespace stiction::test {
@@ -23,12 +25,20 @@ struct HertzFigures {
   double a_fit = 0;               // from p^2 = p0^2 (1 - x^2 / a^2) fitted by least squares
 };
 
-HertzFigures hertz_figures(int level) {
-  const SolvedScene s = solve_builtin("hertz-cylinder-2d", level, "lu-mumps");
+struct HertzCase {
+  const char* scene;
+  double R_star, E_star;
+};
+const double kNu = 0.3;  // E = 1, R = 1 in both scenes
+const HertzCase kCylinderOnPlane{"hertz-cylinder-2d", 1.0, 1.0 / (1 - kNu * kNu)};
+const HertzCase kTwoCylinders{"hertz-cylinders-2d", 0.5, 1.0 / (2 * (1 - kNu * kNu))};
+
+HertzFigures hertz_figures(const HertzCase& c, int level) {
+  const SolvedScene s = solve_builtin(c.scene, level, "lu-mumps");
   EXPECT_TRUE(s.converged());
-  const auto& pair = dynamic_cast<const contact::RigidPlaneContact&>(*s.scene->contacts.at(0));
-  const double E = 1.0, nu = 0.3, R = 1.0, E_star = E / (1 - nu * nu);
-  const double P = 2 * s.steps.back().contact.at(0).force[1];
+  const auto& pair = dynamic_cast<const contact::ContactPair&>(*s.scene->contacts.at(0));
+  const double R = c.R_star, E_star = c.E_star;
+  const double P = 2 * std::abs(s.steps.back().contact.at(0).force[1]);
   HertzFigures h;
   h.a_hertz = std::sqrt(4 * P * R / (M_PI * E_star));
   h.p0_hertz = 2 * P / (M_PI * h.a_hertz);
@@ -36,7 +46,7 @@ HertzFigures hertz_figures(int level) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   int n = 0;
   for (int i = 0; i < pair.slave().n_nodes(); ++i) {
-    const double x = pair.slave().reference_position[i][0], p = s.lambda[2 * i + 1];
+    const double x = pair.slave().reference_position[i][0], p = std::hypot(s.lambda[2 * i], s.lambda[2 * i + 1]);
     if (pair.state(i) == contact::NodeState::Inactive) continue;
     h.last_active = std::max(h.last_active, x);
     if (x < 1e-12) h.p0 = p;
@@ -50,13 +60,13 @@ HertzFigures hertz_figures(int level) {
   return h;
 }
 
-TEST(Hertz2D, HalfWidthAndPeakPressureConvergeToHertz) {
+void check_hertz(const HertzCase& c, int finest) {
   std::vector<HertzFigures> levels;
-  for (int level = 0; level <= 2; ++level) {
-    levels.push_back(hertz_figures(level));
+  for (int level = 0; level <= finest; ++level) {
+    levels.push_back(hertz_figures(c, level));
     const auto& h = levels.back();
-    std::printf("level %d: a Hertz %.5f, fit %.5f, bracket [%.5f, %.5f]; p0 Hertz %.5e, computed %.5e\n", level,
-                h.a_hertz, h.a_fit, h.last_active, h.first_inactive, h.p0_hertz, h.p0);
+    std::printf("%s level %d: a Hertz %.5f, fit %.5f, bracket [%.5f, %.5f]; p0 Hertz %.5e, computed %.5e\n", c.scene,
+                level, h.a_hertz, h.a_fit, h.last_active, h.first_inactive, h.p0_hertz, h.p0);
   }
   const auto& fine = levels.back();
   // The edge of the contact zone lies between the last node in contact and the next one.
@@ -70,6 +80,10 @@ TEST(Hertz2D, HalfWidthAndPeakPressureConvergeToHertz) {
   EXPECT_LT(err_p0(fine), err_p0(levels.front()));
   EXPECT_LT(err_a(fine), err_a(levels.front()));
 }
+
+TEST(Hertz2D, CylinderOnRigidPlaneConvergesToHertz) { check_hertz(kCylinderOnPlane, 2); }
+
+TEST(Hertz2D, TwoDeformableCylindersConvergeToHertz) { check_hertz(kTwoCylinders, 2); }
 
 }  // namespace
 }  // namespace stiction::test

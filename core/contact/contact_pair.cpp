@@ -1,0 +1,140 @@
+#include "contact/contact_pair.hpp"
+
+#include <fmt/format.h>
+
+#include <limits>
+
+#include "common/error.hpp"
+
+namespace stiction::contact {
+
+ContactPair::ContactPair(std::string name, const fem::FieldSpace& space, int slave_tag, ContactSettings settings)
+    : dim_(space.dim()), slave_(make_slave_surface(space, slave_tag, name)), settings_(settings), name_(std::move(name)) {
+  if (settings_.friction < 0) throw Error(fmt::format("contact '{}': friction must be >= 0", name_));
+  if (!(settings_.modulus > 0)) throw Error(fmt::format("contact '{}': modulus must be > 0", name_), ErrorKind::Internal);
+  tolerances_.force = settings_.force_tolerance * settings_.modulus;
+  state_.assign(slave_.n_nodes(), NodeState::Inactive);
+  last_dlambda_t_.assign(slave_.n_nodes(), Vec3::Zero());
+  normals_.assign(slave_.n_nodes(), Vec3::Zero());
+  r_t_.resize(slave_.n_nodes());
+  for (int i = 0; i < slave_.n_nodes(); ++i)
+    r_t_[i] = settings_.tangential_penalty * settings_.modulus / (slave_.local_size(i) * slave_.lumped_mass[i]);
+  u_previous_.assign(space.n_dofs(), 0.0);
+}
+
+void ContactPair::begin_step(int step, const std::vector<double>& u) {
+  u_previous_ = u;
+  previous_step_ = step - 1;
+}
+
+void ContactPair::evaluate(int step, const std::vector<double>& u, const double* lambda, std::vector<double>& r_u,
+                           double* r_c, nonlinear::SparseEntries* jacobian, PetscInt offset) const {
+  std::vector<NodeKinematics> nodes;
+  compute_kinematics(step, u, lambda, &r_u, jacobian, offset, jacobian != nullptr, nodes);
+  const int d = dim_;
+  for (int i = 0; i < slave_.n_nodes(); ++i) {
+    const NodeKinematics& k = nodes[i];
+    if (jacobian) normals_[i] = k.n;
+    Vec3 lam = Vec3::Zero();
+    for (int c = 0; c < d; ++c) lam[c] = lambda[i * d + c];
+    // A node that lost its projection cannot press: it takes the inactive row until the
+    // state machine releases it.
+    const NodeState s = k.admissible ? state_[i] : NodeState::Inactive;
+    const NodeRow row = node_row(s, k.n, k.G, k.S, lam, settings_.friction, r_t_[i]);
+    for (int c = 0; c < d; ++c) r_c[i * d + c] = row.c[c];
+    if (!jacobian) continue;
+    const PetscInt row0 = offset + static_cast<PetscInt>(i) * d;
+    for (int c = 0; c < d; ++c)
+      for (int e = 0; e < d; ++e)
+        if (row.d_lambda(c, e) != 0) jacobian->add(row0 + c, row0 + e, row.d_lambda(c, e));
+    if (s == NodeState::Inactive) continue;
+    auto chain = [&](const Mat3& partial, const std::map<PetscInt, Vec3>& columns) {
+      for (const auto& [dof, column] : columns) {
+        const Vec3 v = partial * column;
+        for (int c = 0; c < d; ++c)
+          if (v[c] != 0) jacobian->add(row0 + c, dof, v[c]);
+      }
+    };
+    using NL = ContactSettings::NormalLinearisation;
+    if (settings_.normal_linearisation == NL::Exact || (settings_.normal_linearisation == NL::Settled && settled_))
+      chain(row.d_normal, k.dn);
+    chain(row.d_gap, k.dG);
+    chain(row.d_slip, k.dS);
+  }
+}
+
+int ContactPair::update_states(int step, const std::vector<double>& u, const double* lambda, const double* dlambda) {
+  std::vector<NodeKinematics> nodes;
+  compute_kinematics(step, u, nullptr, nullptr, nullptr, 0, false, nodes);
+  const int d = dim_;
+  int changes = 0;
+  for (int i = 0; i < slave_.n_nodes(); ++i) {
+    const NodeKinematics& k = nodes[i];
+    normals_[i] = k.n;
+    Vec3 lam = Vec3::Zero(), dlam = Vec3::Zero();
+    for (int c = 0; c < d; ++c) lam[c] = lambda[i * d + c], dlam[c] = dlambda[i * d + c];
+    StateTolerances tol = tolerances_;
+    tol.gap = settings_.gap_tolerance * slave_.diameter * slave_.lumped_mass[i];
+    NodeState next = next_state(state_[i], node_quantities(k.n, k.G, k.S, lam), settings_.friction, tol);
+    if (!k.admissible) next = NodeState::Inactive;
+    // Adaptive r_t (Sec. 4.4): consecutive tangential corrections pointing the same way mean
+    // r_t is too small (grow it), opposite ways mean it overshoots (shrink it).
+    const Vec3 dt = dlam - k.n * k.n.dot(dlam), last = last_dlambda_t_[i];
+    if (state_[i] == NodeState::Slip && next == NodeState::Slip && dt.norm() > 0 && last.norm() > 0) {
+      const double cosine = dt.dot(last) / (dt.norm() * last.norm());
+      if (cosine > 0.8) r_t_[i] *= 20;
+      if (cosine < 0.3) r_t_[i] /= 20;
+    }
+    last_dlambda_t_[i] = dt;
+    if (next != state_[i]) ++changes;
+    state_[i] = next;
+  }
+  settled_ = changes == 0;
+  return changes;
+}
+
+std::vector<double> ContactPair::mean_normal_gaps(int step, const std::vector<double>& u) const {
+  std::vector<NodeKinematics> nodes;
+  compute_kinematics(step, u, nullptr, nullptr, nullptr, 0, false, nodes);
+  std::vector<double> gaps(nodes.size());
+  for (size_t i = 0; i < nodes.size(); ++i)
+    gaps[i] = nodes[i].admissible ? nodes[i].n.dot(nodes[i].G) / slave_.lumped_mass[i]
+                                  : std::numeric_limits<double>::infinity();
+  return gaps;
+}
+
+std::vector<char> ContactPair::states() const {
+  std::vector<char> s(state_.size());
+  for (size_t i = 0; i < s.size(); ++i) s[i] = static_cast<char>(state_[i]);
+  return s;
+}
+
+void ContactPair::schur_mass(nonlinear::SparseEntries& out, PetscInt offset) const {
+  const int d = dim_;
+  // Pi_i: the identity at a sticking node, n_i n_i^T at a slipping node.
+  auto projector = [&](int i) -> Mat3 {
+    return state_[i] == NodeState::Stick ? Mat3::Identity() : Mat3(normals_[i] * normals_[i].transpose());
+  };
+  for (size_t k = 0; k < slave_.mass_v.size(); ++k) {
+    const int i = slave_.mass_i[k], j = slave_.mass_j[k];
+    if (state_[i] == NodeState::Inactive || state_[j] == NodeState::Inactive) continue;
+    const Mat3 P = projector(i) * projector(j);
+    for (int c = 0; c < d; ++c)
+      for (int e = 0; e < d; ++e)
+        if (P(c, e) != 0) out.add(offset + i * d + c, offset + j * d + e, slave_.mass_v[k] * P(c, e));
+  }
+}
+
+nonlinear::ConstraintSummary ContactPair::summary(const double* lambda) const {
+  nonlinear::ConstraintSummary s;
+  s.name = name_;
+  for (int i = 0; i < slave_.n_nodes(); ++i) {
+    if (state_[i] == NodeState::Inactive) ++s.inactive;
+    if (state_[i] == NodeState::Stick) ++s.stick;
+    if (state_[i] == NodeState::Slip) ++s.slip;
+    for (int c = 0; c < dim_; ++c) s.force[c] += slave_.lumped_mass[i] * lambda[i * dim_ + c];
+  }
+  return s;
+}
+
+}  // namespace stiction::contact

@@ -1,0 +1,96 @@
+#pragma once
+// What every contact pair shares (paper Sec. 4): the slave surface with its P1 vector
+// multiplier, the per-node contact states and their state machine (Sec. 4.5), the adaptive
+// tangential penalty r_t (Sec. 4.4), the constraint rows of (30) (node_row.hpp) and the
+// mass part of the Schur approximation (32). A master (rigid plane, deformable surface)
+// supplies only its kinematics: per slave node the contact normal n_i, the vector weighted
+// gap G_i and the weighted slip increment S_i with their derivatives, and the constraint
+// forces -B^T lambda on the displacement equations.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "contact/contact_state.hpp"
+#include "contact/node_row.hpp"
+#include "contact/slave_surface.hpp"
+#include "nonlinear/multiplier_constraint.hpp"
+
+namespace stiction::contact {
+
+struct ContactSettings {
+  double friction = 0;             // Coulomb coefficient mu
+  double modulus = 1;              // stiffness scale of the slave body (Young's modulus)
+  double gap_tolerance = 1e-9;     // relative to the slave surface's diameter
+  double force_tolerance = 1e-9;   // relative to the modulus
+  double tangential_penalty = 1;   // r_t at the start, in units of E / (h_i m_i)
+  // How the Jacobian treats the variation of the nodal normals (a deformable master's
+  // slave normals move with u; a rigid plane's do not, so its Jacobian is exact anyway):
+  //   Exact    always linearised (exact Newton);
+  //   Dropped  never, as the paper (Sec. 4.3, term (1) of (23)): a quasi-Newton step;
+  //   Settled  linearised once an update changed no contact state (default, choice).
+  // Measured (lu-mumps, level 0): hertz-cylinders-2d: Exact cycles in step 1 (the pressure
+  // of the nodes that enter contact together tilts their normals ever further), Dropped
+  // 10 + 7 iterations, Settled 9 + 5. self-contact-2d: Exact 3/3/7/8, Settled 3/3/7/11;
+  // with the arm pushed 0.2 instead of 0.15, Dropped stops at step 4 after 25 iterations
+  // with no state change (linear convergence), Exact converges (6/13/10), Settled cycles.
+  enum class NormalLinearisation { Exact, Dropped, Settled };
+  NormalLinearisation normal_linearisation = NormalLinearisation::Settled;
+};
+
+// Kinematics of one slave node at a displacement u. The derivative maps hold, per
+// displacement unknown k, the column d(.)/du_k (filled only when derivatives are asked).
+struct NodeKinematics {
+  Vec3 n = Vec3::Zero(), G = Vec3::Zero(), S = Vec3::Zero();
+  bool admissible = true;  // false: no valid projection; the node cannot be in contact
+  std::map<PetscInt, Vec3> dn, dG, dS;
+};
+
+class ContactPair : public nonlinear::MultiplierConstraint {
+public:
+  ContactPair(std::string name, const fem::FieldSpace& space, int slave_tag, ContactSettings settings);
+
+  std::string name() const override { return name_; }
+  int n_multipliers() const override { return slave_.n_nodes() * dim_; }
+  void begin_step(int step, const std::vector<double>& u) override;
+  void evaluate(int step, const std::vector<double>& u, const double* lambda, std::vector<double>& r_u, double* r_c,
+                nonlinear::SparseEntries* jacobian, PetscInt offset) const override;
+  int update_states(int step, const std::vector<double>& u, const double* lambda, const double* dlambda) override;
+  std::vector<char> states() const override;
+  void schur_mass(nonlinear::SparseEntries& out, PetscInt offset) const override;
+  nonlinear::ConstraintSummary summary(const double* lambda) const override;
+
+  // Mean normal gap of each slave node at u, gn_i / m_i (a length; negative: penetration),
+  // +infinity at nodes without a projection on the master.
+  std::vector<double> mean_normal_gaps(int step, const std::vector<double>& u) const;
+
+  const SlaveSurface& slave() const { return slave_; }
+  NodeState state(int node) const { return state_[node]; }
+  void set_state(int node, NodeState s) { state_[node] = s; }  // for tests
+
+protected:
+  // The master's part: kinematics of every slave node at u (with derivatives when asked)
+  // and, when r_u is not null, the constraint forces r_u -= B^T lambda (with the blocks
+  // -B^T and d(-B^T lambda)/du added to jacobian when it is not null).
+  virtual void compute_kinematics(int step, const std::vector<double>& u, const double* lambda,
+                                  std::vector<double>* r_u, nonlinear::SparseEntries* jacobian, PetscInt offset,
+                                  bool with_derivatives, std::vector<NodeKinematics>& nodes) const = 0;
+
+  int dim_;
+  SlaveSurface slave_;
+  ContactSettings settings_;
+  std::vector<double> u_previous_;  // converged displacement of the previous load step
+  int previous_step_ = 0;
+
+private:
+  std::string name_;
+  StateTolerances tolerances_;
+  std::vector<NodeState> state_;
+  std::vector<double> r_t_;
+  std::vector<Vec3> last_dlambda_t_;
+  // Normals at the last iterate evaluated with its Jacobian (for schur_mass, which the
+  // Newton driver calls right after assembling that Jacobian) or updated on.
+  mutable std::vector<Vec3> normals_;
+  bool settled_ = false;  // the last state update changed no state
+};
+
+}  // namespace stiction::contact
