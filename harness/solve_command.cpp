@@ -22,13 +22,28 @@ namespace {
 // CSV of per-step quantities, written and flushed row by row.
 class StepTable {
 public:
+  // (key in StepResult::surface_forces, column prefix) of every traction integral.
+  static std::vector<std::pair<std::string, std::string>> traction_columns(const scene::Scene& s) {
+    std::vector<std::pair<std::string, std::string>> out;
+    for (const auto& bc : s.problem.dirichlet) out.emplace_back(bc.name, "traction_" + bc.name);
+    for (const auto* c : s.problem.constraints)
+      for (const auto& [role, tag] : c->surfaces())
+        out.emplace_back(c->name() + "/" + role, fmt::format("contact_{}_{}_traction", c->name(), role));
+    return out;
+  }
+
   StepTable(const std::string& path, const std::string& header_comment, const scene::Scene& s) : out_(path) {
     if (!out_) throw Error(fmt::format("cannot write '{}'", path));
     out_ << header_comment;
     out_ << "step,converged,reason,newton_iterations,initial_residual,reference_residual,final_residual,"
             "krylov_iterations,assembly_seconds,setup_seconds,solve_seconds,wall_seconds";
+    // Forces on each Dirichlet boundary: nodal reactions (the paper's F2), then the
+    // integral of the traction P N on each Dirichlet boundary (F1) and contact surface
+    // (slave: F4, master: -F5).
     for (const auto& bc : s.problem.dirichlet)
       for (int k = 0; k < s.mesh.dim; ++k) out_ << fmt::format(",reaction_{}_{}", bc.name, "xyz"[k]);
+    for (const auto& [key, column] : traction_columns(s))
+      for (int k = 0; k < s.mesh.dim; ++k) out_ << fmt::format(",{}_{}", column, "xyz"[k]);
     // Contact: the integral of lambda over the slave surface (F3), the final states and how
     // many states changed over the step's Newton iterations.
     for (const auto* c : s.problem.constraints) {
@@ -55,6 +70,11 @@ public:
       auto it = r.reactions.find(bc.name);
       for (int k = 0; k < s.mesh.dim; ++k)
         out_ << (it == r.reactions.end() ? std::string(",") : fmt::format(",{:.10e}", it->second[k]));
+    }
+    for (const auto& [key, column] : traction_columns(s)) {
+      auto it = r.surface_forces.find(key);
+      for (int k = 0; k < s.mesh.dim; ++k)
+        out_ << (it == r.surface_forces.end() ? std::string(",") : fmt::format(",{:.10e}", it->second[k]));
     }
     for (size_t c = 0; c < s.problem.constraints.size(); ++c) {
       if (c >= r.contact.size()) {  // not converged: no contact figures

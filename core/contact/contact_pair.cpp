@@ -9,7 +9,7 @@
 namespace stiction::contact {
 
 ContactPair::ContactPair(std::string name, const fem::FieldSpace& space, int slave_tag, ContactSettings settings)
-    : dim_(space.dim()), slave_(make_slave_surface(space, slave_tag, name)), settings_(settings), name_(std::move(name)) {
+    : dim_(space.dim()), slave_tag_(slave_tag), slave_(make_slave_surface(space, slave_tag, name)), settings_(settings), name_(std::move(name)) {
   if (settings_.friction < 0) throw Error(fmt::format("contact '{}': friction must be >= 0", name_));
   if (!(settings_.modulus > 0)) throw Error(fmt::format("contact '{}': modulus must be > 0", name_), ErrorKind::Internal);
   tolerances_.force = settings_.force_tolerance * settings_.modulus;

@@ -58,6 +58,7 @@ public:
   std::vector<char> states() const override;
   void schur_mass(nonlinear::SparseEntries& out, PetscInt offset) const override;
   nonlinear::ConstraintSummary summary(const double* lambda) const override;
+  std::vector<std::pair<std::string, int>> surfaces() const override { return {{"slave", slave_tag_}}; }
 
   // Mean normal gap of each slave node at u, gn_i / m_i (a length; negative: penetration),
   // +infinity at nodes without a projection on the master.
@@ -76,6 +77,7 @@ protected:
                                   bool with_derivatives, std::vector<NodeKinematics>& nodes) const = 0;
 
   int dim_;
+  int slave_tag_;
   SlaveSurface slave_;
   ContactSettings settings_;
   std::vector<double> u_previous_;  // converged displacement of the previous load step

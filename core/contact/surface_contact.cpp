@@ -191,7 +191,10 @@ bool share_vertex(const Facet& a, const Facet& b) {
 
 SurfaceContact::SurfaceContact(std::string name, const fem::FieldSpace& space, int slave_tag, int master_tag,
                                ContactSettings settings, double search_radius)
-    : ContactPair(std::move(name), space, slave_tag, settings), space_(space), search_radius_(search_radius) {
+    : ContactPair(std::move(name), space, slave_tag, settings),
+      space_(space),
+      master_tag_(master_tag),
+      search_radius_(search_radius) {
   if (space.dim() != 2)
     throw Error(fmt::format("contact '{}': a deformable master is implemented in 2D (plane strain) only; "
                             "use master = \"plane\" in 3D", this->name()));

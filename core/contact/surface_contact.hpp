@@ -48,6 +48,10 @@ public:
     int node_of_vertex[2] = {-1, -1};  // slave facets: multiplier node of each vertex
   };
 
+  std::vector<std::pair<std::string, int>> surfaces() const override {
+    return {{"slave", slave_tag_}, {"master", master_tag_}};
+  }
+
 private:
   void compute_kinematics(int step, const std::vector<double>& u, const double* lambda, std::vector<double>* r_u,
                           nonlinear::SparseEntries* jacobian, PetscInt offset, bool with_derivatives,
@@ -56,6 +60,7 @@ private:
 
   const fem::FieldSpace& space_;
   std::vector<Facet> slave_facets_, master_facets_;
+  int master_tag_;
   double search_radius_;
 };
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "common/error.hpp"
 #include "common/petsc.hpp"
@@ -319,6 +320,83 @@ std::vector<double> cell_cauchy_stress(const FieldSpace& space,
         for (int j = 0; j < 3; ++j) out.push_back(sigma(i, j));
     }
     return out;
+  });
+}
+
+std::array<double, 3> boundary_force(const FieldSpace& space, const std::vector<const materials::Material*>& cell_material,
+                                     const std::vector<double>& u, int facet_tag) {
+  const mesh::Mesh& mesh = space.mesh();
+  // The cell of each tagged facet and the cell's local vertex opposite to it.
+  std::map<std::vector<int>, std::pair<int, int>> owner;
+  for (int f = 0; f < mesh.n_facets(); ++f)
+    if (mesh.facet_tags[f] == facet_tag) {
+      std::vector<int> key(mesh.facet(f), mesh.facet(f) + mesh.dim);
+      std::sort(key.begin(), key.end());
+      owner[key] = {-1, -1};
+    }
+  for (int c = 0; c < mesh.n_cells(); ++c)
+    for (int k = 0; k <= mesh.dim; ++k) {
+      std::vector<int> key;
+      for (int j = 0; j <= mesh.dim; ++j)
+        if (j != k) key.push_back(mesh.cell(c)[j]);
+      std::sort(key.begin(), key.end());
+      auto it = owner.find(key);
+      if (it != owner.end()) it->second = {c, k};
+    }
+  return dispatch(space, [&](auto Dc, auto NBc) {
+    constexpr int D = decltype(Dc)::value, NB = decltype(NBc)::value;
+    const QuadratureRule rule = simplex_quadrature(D - 1, 4);
+    std::array<double, 3> force{0, 0, 0};
+    int nodes[NB];
+    double N[NB], dN[NB * D], ue[NB][D], G[NB][D];
+    for (const auto& [key, where] : owner) {
+      const auto [c, opposite] = where;
+      if (c < 0) throw Error("boundary force: a tagged facet belongs to no cell", ErrorKind::Internal);
+      const int* v = mesh.cell(c);
+      int local[D];  // cell-local vertices of the facet
+      for (int j = 0, k = 0; j <= D; ++j)
+        if (j != opposite) local[k++] = j;
+      // Outward normal times the facet's measure (reference configuration).
+      Eigen::Matrix<double, D, 1> X[D + 1];
+      for (int j = 0; j <= D; ++j)
+        for (int i = 0; i < D; ++i) X[j][i] = mesh.vertex(v[j])[i];
+      Eigen::Matrix<double, D, 1> area_normal;
+      if constexpr (D == 2) {
+        const auto e = X[local[1]] - X[local[0]];
+        area_normal = {e[1], -e[0]};
+      } else {
+        const Eigen::Vector3d e1 = X[local[1]] - X[local[0]], e2 = X[local[2]] - X[local[0]];
+        area_normal = 0.5 * e1.cross(e2);
+      }
+      if (area_normal.dot(X[opposite] - X[local[0]]) > 0) area_normal = -area_normal;
+      const double measure = area_normal.norm() * (D == 2 ? 1.0 : 2.0);  // reference facet measure 1/(D-1)!
+      const Eigen::Matrix<double, D, 1> normal = area_normal.normalized();
+      space.cell_nodes(c, nodes);
+      for (int a = 0; a < NB; ++a)
+        for (int i = 0; i < D; ++i) ue[a][i] = u[static_cast<size_t>(nodes[a]) * D + i];
+      const auto inv = affine_cell<D>(mesh, c).inv;
+      for (int q = 0; q < rule.size(); ++q) {
+        // The facet point in the cell's reference coordinates: barycentric weights of the
+        // facet's vertices placed on the cell's reference vertices (vertex 0 at the origin).
+        double bary[D + 1] = {}, xi[D] = {};
+        bary[local[0]] = 1;
+        for (int j = 0; j < D - 1; ++j) bary[local[0]] -= rule.point(q)[j], bary[local[j + 1]] = rule.point(q)[j];
+        for (int j = 1; j <= D; ++j) xi[j - 1] = bary[j];
+        eval_shape(D, space.kind(), xi, N, dN);
+        physical_gradients<D, NB>(dN, inv, G);
+        const Mat3 F = deformation_gradient<D, NB>(ue, G);
+        Mat3 P = cell_material[c]->first_piola(F);
+        if (cell_material[c]->mixed_bulk_modulus() > 0) {
+          double p = 0;
+          for (int j = 0; j <= D; ++j) p += bary[j] * u[space.pressure_dof(v[j])];
+          add_pressure_to_stress(F.inverse().transpose(), F.determinant(), p, P, nullptr);
+        }
+        const double w = rule.weights[q] * measure;
+        for (int i = 0; i < D; ++i)
+          for (int J = 0; J < D; ++J) force[i] += w * P(i, J) * normal[J];
+      }
+    }
+    return force;
   });
 }
 

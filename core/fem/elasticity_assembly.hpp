@@ -4,6 +4,7 @@
 //   K_ab(i,k) = int_Omega A_iJkL dN_a/dX_J dN_b/dX_L
 // The internal part loops over cells with a kernel specialised for the dimension and the
 // number of shape functions; loads are dead loads on the reference configuration.
+#include <array>
 #include <vector>
 
 #include "fem/field_space.hpp"
@@ -39,5 +40,12 @@ Mat assemble_pressure_mass(MPI_Comm comm, const FieldSpace& space);
 std::vector<double> cell_cauchy_stress(const FieldSpace& space,
                                        const std::vector<const materials::Material*>& cell_material,
                                        const std::vector<double>& u);
+
+// Integral of the first Piola traction P N over the boundary facets tagged `facet_tag`
+// (reference configuration, N the facet's outward normal): the force the body's material
+// transmits through that surface (the paper's F1 on a Dirichlet boundary, F4 / -F5 on the
+// slave / master contact surfaces). 3 components (the third is 0 in 2D).
+std::array<double, 3> boundary_force(const FieldSpace& space, const std::vector<const materials::Material*>& cell_material,
+                                     const std::vector<double>& u, int facet_tag);
 
 }  // namespace stiction::fem

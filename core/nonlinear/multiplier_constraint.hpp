@@ -61,6 +61,9 @@ public:
   // none at inactive nodes). Multiplier k is row/column `offset + k`.
   virtual void schur_mass(SparseEntries& out, PetscInt offset) const = 0;
   virtual ConstraintSummary summary(const double* lambda) const = 0;
+  // The boundary facets the constraint acts on, by role ("slave", "master"), for the
+  // traction integrals the Newton driver reports per load step (paper's F4, F5).
+  virtual std::vector<std::pair<std::string, int>> surfaces() const { return {}; }
 };
 
 }  // namespace stiction::nonlinear

@@ -234,6 +234,15 @@ std::map<std::string, std::array<double, 3>> QuasiStaticSolver::reactions(const 
   return out;
 }
 
+std::map<std::string, std::array<double, 3>> QuasiStaticSolver::surface_forces() const {
+  std::map<std::string, std::array<double, 3>> out;
+  const auto force = [&](int tag) { return fem::boundary_force(*problem_.space, problem_.cell_material, u_, tag); };
+  for (const auto& bc : problem_.dirichlet) out[bc.name] = force(bc.facet_tag);
+  for (const auto* c : problem_.constraints)
+    for (const auto& [role, tag] : c->surfaces()) out[c->name() + "/" + role] = force(tag);
+  return out;
+}
+
 void QuasiStaticSolver::assemble_system(const Residuals& r, bool lift) {
   const fem::FieldSpace& space = *problem_.space;
   stiffness_->begin_assembly();
@@ -336,6 +345,7 @@ StepResult QuasiStaticSolver::solve_step(int step) {
     res.final_residual = rnorm;
     if (res.converged()) {
       res.reactions = reactions(r.u);
+      res.surface_forces = surface_forces();
       for (size_t k = 0; k < problem_.constraints.size(); ++k)
         res.contact.push_back(problem_.constraints[k]->summary(lambda_.data() + constraint_offset_[k]));
     }

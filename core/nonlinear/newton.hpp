@@ -80,6 +80,9 @@ struct StepResult {
   std::vector<NewtonIteration> iterations;
   std::map<std::string, std::array<double, 3>> reactions;  // per Dirichlet condition
   std::vector<ConstraintSummary> contact;                  // per contact pair, when converged
+  // Integral of the traction P N over each Dirichlet boundary (by its name: the paper's F1)
+  // and each contact surface ("<pair>/slave": F4, "<pair>/master": -F5), when converged.
+  std::map<std::string, std::array<double, 3>> surface_forces;
   double wall_seconds = 0;
   std::string detail;  // human-readable context for a failure
   bool converged() const { return nonlinear::converged(reason); }
@@ -120,6 +123,7 @@ private:
   std::vector<char> constraint_states() const;
   double free_norm(const std::vector<double>& r) const;
   std::map<std::string, std::array<double, 3>> reactions(const std::vector<double>& r) const;
+  std::map<std::string, std::array<double, 3>> surface_forces() const;
 
   MPI_Comm comm_;
   const ElasticityProblem& problem_;
