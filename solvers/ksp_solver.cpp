@@ -1,5 +1,7 @@
 #include "ksp_solver.hpp"
 
+#include <HYPRE_utilities.h>
+
 #include "solver_figures.hpp"
 #include "stdout_capture.hpp"
 
@@ -75,6 +77,9 @@ KspSolver::KspSolver(std::string name, MPI_Comm comm) : name_(std::move(name)) {
 
 void KspSolver::setup(const nonlinear::NewtonSystem& system) {
   const auto t0 = std::chrono::steady_clock::now();
+  // hypre keeps a process-wide error flag that a failed set-up leaves raised (error 12 on
+  // a saddle-point system); every later BoomerAMG set-up in the process would then fail.
+  HYPRE_ClearAllErrors();
   // Some solvers print set-up statistics (hypre): keep them for the figures and the view.
   std::unique_ptr<StdoutCapture> capture;
   if (capture_setup_output()) capture = std::make_unique<StdoutCapture>();

@@ -1,7 +1,7 @@
-// Coulomb friction against a rigid plane (plane strain): an elastic block is pressed on the
-// plane (step 1), its top pulled sideways a little (step 2: the tangential force stays
-// below mu N, nodes stick) and then far (step 3: the block slides, every contact node
-// slips and the tangential force is mu N).
+// Coulomb friction against a rigid plane (built-in scene sliding-block-2d): an elastic block
+// is pressed on the plane (step 1), its top pulled sideways a little (step 2: the tangential
+// force stays below mu N, nodes stick) and then far (step 3: the block slides, every contact
+// node slips and the tangential force is mu N).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,47 +12,8 @@
 namespace stiction::test {
 namespace {
 
-const char* kSlidingBlock = R"(
-[scene]
-name = "sliding-block-2d"
-
-[[material]]
-name = "rubber"
-model = "linear"
-E = 1.0
-nu = 0.3
-
-[[body]]
-name = "block"
-material = "rubber"
-mesh = { generator = "structured-box", size = [1.0, 0.4], cells = [10, 4] }
-
-[[dirichlet]]
-boundary = "ymax"
-components = ["y"]
-value = [-0.01]
-schedule = [1.0, 1.0, 1.0]
-
-[[dirichlet]]
-boundary = "ymax"
-components = ["x"]
-value = [0.05]
-schedule = [0.0, 0.004, 1.0]
-
-[[contact]]
-name = "ground"
-boundary = "ymin"
-master = "plane"
-point = [0.0, 0.0]
-normal = [0.0, 1.0]
-friction = 0.3
-
-[load]
-steps = 3
-)";
-
 TEST(Friction, SticksBelowMuNThenSlidesWithMuN) {
-  const SolvedScene s = solve_scene_text(kSlidingBlock, 0, "lu-mumps");
+  const SolvedScene s = solve_builtin("sliding-block-2d", 0, "lu-mumps");
   ASSERT_TRUE(s.converged()) << s.steps.back().detail;
   ASSERT_EQ(s.steps.size(), 3u);
   const double mu = 0.3;
