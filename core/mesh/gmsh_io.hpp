@@ -35,6 +35,20 @@ struct PolygonSpec {
 };
 Mesh generate_polygon(const PolygonSpec& spec);
 
+// One eighth of a ball of radius R centred at (0, R, 0): x >= 0, z >= 0, y <= R, so its
+// lowest point (the pole) is the origin. Faces "surface" (spherical), "top" (y = R),
+// "symmetry-x" (x = 0), "symmetry-z" (z = 0); cell tag 1 "body". Element size
+// contact_size within contact_zone of the pole, growing to h at 0.6 R; `scale`
+// multiplies every size (a finer mesh of the same, exactly spherical, geometry).
+struct SphereOctantSpec {
+  double radius = 1;
+  double h = 0;
+  double contact_size = 0;
+  double contact_zone = 0;
+  double scale = 1;
+};
+Mesh generate_sphere_octant(const SphereOctantSpec& spec);
+
 // Writes the geometry above as a .msh 4.1 file (binary or ASCII), for tests and users.
 void write_box_msh(int dim, const std::array<double, 3>& lengths, double h,
                    const std::string& path, bool binary);

@@ -42,7 +42,7 @@ struct Schemas {
                   std::string("mixed"), {"mixed", "displacement"}}}};
     mesh = {"mesh",
             {{"file", VT::String, "Gmsh .msh file (version 4), relative to the scene file", false},
-             {"generator", VT::String, "built-in geometry instead of a file", false, {}, {"box", "structured-box", "polygon"}},
+             {"generator", VT::String, "built-in geometry instead of a file", false, {}, {"box", "structured-box", "polygon", "sphere-octant"}},
              {"points", VT::FloatArray, "'polygon': corners x0, y0, x1, y1, ... counter-clockwise", false},
              {"sides", VT::StringArray, "'polygon': boundary name of each side (side i joins point i to i+1)", false},
              {"thickness", VT::Float, "'polygon': extrusion along z for a 3D body (faces 'front', 'back')", false},
@@ -50,7 +50,10 @@ struct Schemas {
              {"arc_sides", VT::FloatArray, "'polygon': sides that are circular arcs (re-meshed per level)", false},
              {"arc_centers", VT::FloatArray, "'polygon': centre x, y of each arc side", false},
              {"size", VT::FloatArray, "box side lengths [lx, ly] (2D) or [lx, ly, lz] (3D)", false},
-             {"h", VT::Float, "target element size for the 'box' and 'polygon' generators (Gmsh)", false},
+             {"h", VT::Float, "target element size for the 'box', 'polygon' and 'sphere-octant' generators (Gmsh)", false},
+             {"radius", VT::Float, "'sphere-octant': radius R (ball centred at (0, R, 0), pole at the origin)", false},
+             {"contact_size", VT::Float, "'sphere-octant': element size near the pole (<= h)", false},
+             {"contact_zone", VT::Float, "'sphere-octant': distance from the pole meshed at contact_size", false, 0.0},
              {"cells", VT::FloatArray, "cells per side for 'structured-box'", false}}};
     body = {"body",
             {{"name", VT::String, "body name (prefix of its boundary names: 'block/top')", true},
@@ -198,6 +201,18 @@ mesh::Mesh make_body_mesh(const toml::table& t, const std::string& file, const s
       *refined = true;
     }
     return mesh::generate_polygon(spec);
+  }
+  if (gen == "sphere-octant") {
+    for (const char* key : {"h", "radius", "contact_size"})
+      if (!t.contains(key)) throw Error(fmt::format("{}: body '{}': the 'sphere-octant' generator needs mesh.{}", file, body, key));
+    mesh::SphereOctantSpec spec;
+    spec.radius = get_float(t, S, "radius");
+    spec.h = get_float(t, S, "h");
+    spec.contact_size = get_float(t, S, "contact_size");
+    spec.contact_zone = get_float(t, S, "contact_zone");
+    spec.scale = std::ldexp(1.0, -level);  // re-meshed per level: the sphere stays exact
+    *refined = true;
+    return mesh::generate_sphere_octant(spec);
   }
   const auto size = get_floats(t, "size");
   if (size.size() != 2 && size.size() != 3)

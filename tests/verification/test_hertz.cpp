@@ -23,50 +23,69 @@ struct HertzFigures {
   double last_active = 0;         // x of the outermost node in contact
   double first_inactive = 0;      // x of the nearest node out of contact beyond it
   double a_fit = 0;               // from p^2 = p0^2 (1 - x^2 / a^2) fitted by least squares
+  double p0_fit = 0;              // p0 of that fit
 };
 
 struct HertzCase {
   const char* scene;
   double R_star, E_star;
+  int dim = 2;  // 3: a sphere octant (a quarter of the contact patch)
+  const char* backend = "lu-mumps";
 };
 const double kNu = 0.3;  // E = 1, R = 1 in both scenes
 const HertzCase kCylinderOnPlane{"hertz-cylinder-2d", 1.0, 1.0 / (1 - kNu * kNu)};
 const HertzCase kTwoCylinders{"hertz-cylinders-2d", 0.5, 1.0 / (2 * (1 - kNu * kNu))};
+const HertzCase kSphereOnPlane{"hertz-sphere-3d", 1.0, 1.0 / (1 - kNu * kNu), 3};
 
 HertzFigures hertz_figures(const HertzCase& c, int level) {
-  const SolvedScene s = solve_builtin(c.scene, level, "lu-mumps");
+  const SolvedScene s = solve_builtin(c.scene, level, c.backend);
   EXPECT_TRUE(s.converged());
   const auto& pair = dynamic_cast<const contact::ContactPair&>(*s.scene->contacts.at(0));
   const double R = c.R_star, E_star = c.E_star;
-  const double P = 2 * std::abs(s.steps.back().contact.at(0).force[1]);
   HertzFigures h;
-  h.a_hertz = std::sqrt(4 * P * R / (M_PI * E_star));
-  h.p0_hertz = 2 * P / (M_PI * h.a_hertz);
+  if (c.dim == 2) {
+    const double P = 2 * std::abs(s.steps.back().contact.at(0).force[1]);
+    h.a_hertz = std::sqrt(4 * P * R / (M_PI * E_star));
+    h.p0_hertz = 2 * P / (M_PI * h.a_hertz);
+  } else {  // a = (3 P R / (4 E*))^(1/3), p0 = 3 P / (2 pi a^2)
+    const double P = 4 * std::abs(s.steps.back().contact.at(0).force[1]);
+    h.a_hertz = std::cbrt(3 * P * R / (4 * E_star));
+    h.p0_hertz = 3 * P / (2 * M_PI * h.a_hertz * h.a_hertz);
+  }
   h.first_inactive = 1e9;
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   int n = 0;
+  const int d = c.dim;
+  // Distance of a slave node from the axis of symmetry (x in 2D, hypot(x, z) in 3D).
+  auto radius = [&](int i) {
+    const auto& X = pair.slave().reference_position[i];
+    return d == 2 ? X[0] : std::hypot(X[0], X[2]);
+  };
   for (int i = 0; i < pair.slave().n_nodes(); ++i) {
-    const double x = pair.slave().reference_position[i][0], p = std::hypot(s.lambda[2 * i], s.lambda[2 * i + 1]);
+    double p2 = 0;
+    for (int k = 0; k < d; ++k) p2 += s.lambda[d * i + k] * s.lambda[d * i + k];
+    const double x = radius(i), p = std::sqrt(p2);
     if (pair.state(i) == contact::NodeState::Inactive) continue;
     h.last_active = std::max(h.last_active, x);
     if (x < 1e-12) h.p0 = p;
     sx += x * x, sy += p * p, sxx += std::pow(x, 4), sxy += x * x * p * p, ++n;
   }
   for (int i = 0; i < pair.slave().n_nodes(); ++i)
-    if (pair.state(i) == contact::NodeState::Inactive && pair.slave().reference_position[i][0] > h.last_active)
-      h.first_inactive = std::min(h.first_inactive, pair.slave().reference_position[i][0]);
+    if (pair.state(i) == contact::NodeState::Inactive && radius(i) > h.last_active)
+      h.first_inactive = std::min(h.first_inactive, radius(i));
   const double beta = (n * sxy - sx * sy) / (n * sxx - sx * sx), alpha = (sy - beta * sx) / n;
   h.a_fit = std::sqrt(-alpha / beta);
+  h.p0_fit = std::sqrt(alpha);
   return h;
 }
 
-void check_hertz(const HertzCase& c, int finest) {
+void check_hertz(const HertzCase& c, int finest, bool assert_trend = true) {
   std::vector<HertzFigures> levels;
   for (int level = 0; level <= finest; ++level) {
     levels.push_back(hertz_figures(c, level));
     const auto& h = levels.back();
-    std::printf("%s level %d: a Hertz %.5f, fit %.5f, bracket [%.5f, %.5f]; p0 Hertz %.5e, computed %.5e\n", c.scene,
-                level, h.a_hertz, h.a_fit, h.last_active, h.first_inactive, h.p0_hertz, h.p0);
+    std::printf("%s level %d: a Hertz %.5f, fit %.5f, bracket [%.5f, %.5f]; p0 Hertz %.5e, node %.5e, fit %.5e\n",
+                c.scene, level, h.a_hertz, h.a_fit, h.last_active, h.first_inactive, h.p0_hertz, h.p0, h.p0_fit);
   }
   const auto& fine = levels.back();
   // The edge of the contact zone lies between the last node in contact and the next one.
@@ -74,6 +93,7 @@ void check_hertz(const HertzCase& c, int finest) {
   EXPECT_GE(fine.first_inactive, fine.a_hertz * 0.98);
   EXPECT_NEAR(fine.a_fit / fine.a_hertz, 1.0, 0.02);
   EXPECT_NEAR(fine.p0 / fine.p0_hertz, 1.0, 0.02);
+  if (!assert_trend) return;
   // Converging under refinement: the finest level is closer to Hertz than the coarsest.
   auto err_p0 = [](const HertzFigures& h) { return std::abs(h.p0 / h.p0_hertz - 1); };
   auto err_a = [](const HertzFigures& h) { return std::abs(h.a_fit / h.a_hertz - 1); };
@@ -84,6 +104,12 @@ void check_hertz(const HertzCase& c, int finest) {
 TEST(Hertz2D, CylinderOnRigidPlaneConvergesToHertz) { check_hertz(kCylinderOnPlane, 2); }
 
 TEST(Hertz2D, TwoDeformableCylindersConvergeToHertz) { check_hertz(kTwoCylinders, 2); }
+
+// 3D: within 2% at level 1 (25 500 unknowns). Not asserted (measured, lu-mumps): the trend
+// from level 0 to 1 (a_fit error 0.87% -> 1.28%, p0 at the pole node 0.14% -> 1.8%, p0 of
+// the fit 1.7% -> 0.12%); level 2 (170 000 unknowns) is too slow for this suite with LU,
+// and with schur-amg its second load step does not converge (the active set chatters).
+TEST(Hertz3D, SphereOnRigidPlaneWithinTwoPercentOfHertz) { check_hertz(kSphereOnPlane, 1, false); }
 
 }  // namespace
 }  // namespace stiction::test

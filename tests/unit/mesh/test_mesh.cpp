@@ -145,6 +145,38 @@ INSTANTIATE_TEST_SUITE_P(Formats, GmshRoundTrip,
                                   (std::get<1>(info.param) ? "binary" : "ascii");
                          });
 
+// The sphere-octant generator: an eighth of the unit ball (volume pi/6, approached from
+// below by the flat facets, closer at the finer scale), its four named faces, positive
+// cells, and a finer mesh near the pole than far from it.
+TEST(SphereOctant, VolumeFacesAndGrading) {
+  SphereOctantSpec spec;
+  spec.radius = 1.0, spec.h = 0.3, spec.contact_size = 0.05, spec.contact_zone = 0.1;
+  const Mesh m = generate_sphere_octant(spec);
+  EXPECT_NO_THROW(check_validity(m, "sphere octant"));
+  const double volume = total_measure(m) / (M_PI / 6);
+  EXPECT_GT(volume, 0.95);
+  EXPECT_LT(volume, 1.0);
+  SphereOctantSpec finer = spec;
+  finer.scale = 0.5;
+  const double finer_volume = total_measure(generate_sphere_octant(finer)) / (M_PI / 6);
+  EXPECT_GT(finer_volume, volume);
+  EXPECT_LT(finer_volume, 1.0);
+  for (const char* name : {"surface", "top", "symmetry-x", "symmetry-z"}) EXPECT_TRUE(m.facet_tag_names.count(name)) << name;
+  double near_edge = 1e9, far_edge = 0;  // shortest cell edge near the pole, longest far away
+  for (int c = 0; c < m.n_cells(); ++c) {
+    const double* a = m.vertex(m.cell(c)[0]);
+    const double* b = m.vertex(m.cell(c)[1]);
+    const double edge = std::sqrt(std::pow(a[0] - b[0], 2) + std::pow(a[1] - b[1], 2) + std::pow(a[2] - b[2], 2));
+    const double from_pole = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    if (from_pole < 0.05) near_edge = std::min(near_edge, edge);
+    if (from_pole > 0.8) far_edge = std::max(far_edge, edge);
+  }
+  EXPECT_LT(near_edge, 0.1);
+  EXPECT_GT(far_edge, 0.15);
+  spec.contact_size = 0.5;  // above h
+  EXPECT_THROW(generate_sphere_octant(spec), Error);
+}
+
 TEST(GmshRead, MissingFileIsAnError) {
   EXPECT_THROW(read_msh("/nonexistent/mesh.msh"), Error);
 }
