@@ -261,6 +261,15 @@ TEST_F(StictionCli, UnknownBoundaryListsTheBodysBoundaries) {
                {"unknown-boundary.toml", "dirichlet[0]", "nosuch", "xmin", "xmax", "ymin", "ymax"});
 }
 
+TEST_F(StictionCli, ContactPairKeysAreCheckedAgainstTheMaster) {
+  const std::string pair = "\n[[contact]]\nboundary = \"ymin\"\nmaster = \"surface\"\n";
+  expect_error(solve_variant(SceneVariant().append(pair), "no-master-boundary.toml"), 2,
+               {"no-master-boundary.toml", "contact[0]", "master_boundary"});
+  expect_error(solve_variant(SceneVariant().append(pair + "master_boundary = \"ymax\"\npoint = [0.0, 0.0]\n"),
+                             "plane-key.toml"),
+               2, {"plane-key.toml", "contact[0]", "'point'", "does not apply"});
+}
+
 TEST_F(StictionCli, ValidRunWritesOutput) {
   const CliRun run = solve("cantilever-2d");
   EXPECT_EQ(run.exit_code, 0) << "stderr:\n" << run.err;
