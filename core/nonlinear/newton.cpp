@@ -300,16 +300,9 @@ std::vector<char> QuasiStaticSolver::constraint_states() const {
   return all;
 }
 
-StepResult QuasiStaticSolver::solve_step(int step) {
-  const auto t_step = std::chrono::steady_clock::now();
+void QuasiStaticSolver::set_step_targets(int step) {
   const fem::FieldSpace& space = *problem_.space;
   const int d = space.dim();
-  const size_t n_u = space.n_dofs();
-  StepResult res;
-  res.step = step;
-  step_ = step;
-  for (auto* c : problem_.constraints) c->begin_step(step, u_);
-
   // Prescribed values of this step on every constrained dof (last condition wins).
   std::vector<double> full_target(space.n_dofs(), 0.0);
   for (size_t b = 0; b < problem_.dirichlet.size(); ++b) {
@@ -322,6 +315,70 @@ StepResult QuasiStaticSolver::solve_step(int step) {
   }
   target_.resize(constrained_.size());
   for (size_t k = 0; k < constrained_.size(); ++k) target_[k] = full_target[constrained_[k]];
+}
+
+double QuasiStaticSolver::lifted_rhs_free_norm() const {
+  // The lifted system's right side without its prescribed rows.
+  std::vector<double> b(problem_.space->n_dofs());
+  const PetscScalar* a;
+  STICTION_PETSC(VecGetArrayRead(system_.rhs, &a));
+  std::copy(a, a + b.size(), b.begin());
+  STICTION_PETSC(VecRestoreArrayRead(system_.rhs, &a));
+  return free_norm(b);
+}
+
+void QuasiStaticSolver::split_update(Vec du, std::vector<double>& dv, std::vector<double>& dl) const {
+  const PetscScalar* a;
+  STICTION_PETSC(VecGetArrayRead(du, &a));
+  std::copy(a, a + dv.size(), dv.begin());
+  std::copy(a + dv.size(), a + dv.size() + dl.size(), dl.begin());
+  STICTION_PETSC(VecRestoreArrayRead(du, &a));
+}
+
+QuasiStaticSolver::TrialStep QuasiStaticSolver::take_step(int step, const std::vector<double>& dv,
+                                                          const std::vector<double>& dl, Residuals& rt) {
+  // Backtracking: halve the step while the trial state inverts a cell or is not finite.
+  TrialStep t;
+  std::vector<double> trial, trial_lambda;
+  for (int bt = 0;; ++bt) {
+    trial = u_;
+    trial_lambda = lambda_;
+    for (size_t i = 0; i < dv.size(); ++i) trial[i] += t.alpha * dv[i];
+    for (size_t i = 0; i < dl.size(); ++i) trial_lambda[i] += t.alpha * dl[i];
+    if (t.alpha == 1)
+      for (size_t k = 0; k < constrained_.size(); ++k) trial[constrained_[k]] = target_[k];  // exact, free of round-off
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto st = evaluate(step, trial, trial_lambda, rt, true);
+    t.assembly_seconds = seconds_since(t0);
+    double tn = free_norm(rt.u);
+    for (double c : rt.c) tn += std::abs(c);
+    if (st.inverted_cell < 0 && std::isfinite(tn)) break;
+    if (bt == settings_.max_backtracks) {
+      t.inverted_cell = st.inverted_cell;
+      t.failure = st.inverted_cell < 0 ? NewtonReason::DivergedNaN : NewtonReason::DivergedInvertedElement;
+      return t;
+    }
+    t.alpha *= 0.5;
+  }
+  u_.swap(trial);
+  lambda_.swap(trial_lambda);
+  return t;
+}
+
+double QuasiStaticSolver::contact_force_norm(const Residuals& r) const {
+  std::vector<double> contact_force(r.u.size());
+  for (size_t i = 0; i < r.u.size(); ++i) contact_force[i] = r.u[i] - r.elastic[i];
+  return free_norm(contact_force);
+}
+
+StepResult QuasiStaticSolver::solve_step(int step) {
+  const auto t_step = std::chrono::steady_clock::now();
+  const size_t n_u = problem_.space->n_dofs();
+  StepResult res;
+  res.step = step;
+  step_ = step;
+  for (auto* c : problem_.constraints) c->begin_step(step, u_);
+  set_step_targets(step);
   auto lift_pending = [&] {
     for (size_t k = 0; k < constrained_.size(); ++k)
       if (u_[constrained_[k]] != target_[k]) return true;
@@ -383,16 +440,7 @@ StepResult QuasiStaticSolver::solve_step(int step) {
     t0 = std::chrono::steady_clock::now();
     assemble_system(r, pending);
     rec.assembly_seconds = asm_seconds + seconds_since(t0);
-    if (it == 0) {
-      PetscReal bnorm;  // free part: the lifted system's right side minus its prescribed rows
-      std::vector<double> b(n_u);
-      const PetscScalar* a;
-      STICTION_PETSC(VecGetArrayRead(system_.rhs, &a));
-      std::copy(a, a + n_u, b.begin());
-      STICTION_PETSC(VecRestoreArrayRead(system_.rhs, &a));
-      bnorm = free_norm(b);
-      res.reference_residual = std::max(rnorm, static_cast<double>(bnorm));
-    }
+    if (it == 0) res.reference_residual = std::max(rnorm, lifted_rhs_free_norm());
 
     linear_.setup(system_);
     if (settings_.forcing == Forcing::EisenstatWalker) {
@@ -415,40 +463,18 @@ StepResult QuasiStaticSolver::solve_step(int step) {
       return finish(NewtonReason::DivergedLinearSolver);
     }
     std::vector<double> dv(n_u), dl(lambda_.size());
-    {
-      const PetscScalar* a;
-      STICTION_PETSC(VecGetArrayRead(du, &a));
-      std::copy(a, a + n_u, dv.begin());
-      std::copy(a + n_u, a + n_u + dl.size(), dl.begin());
-      STICTION_PETSC(VecRestoreArrayRead(du, &a));
+    split_update(du, dv, dl);
+    const TrialStep trial = take_step(step, dv, dl, rt);
+    asm_seconds = trial.assembly_seconds;
+    if (trial.failure != NewtonReason::ConvergedAbsolute) {
+      res.iterations.push_back(rec);
+      res.detail = trial.failure == NewtonReason::DivergedNaN
+                       ? "the residual is not finite after every step reduction"
+                       : fmt::format("cell {} inverts (det F <= 0) even after {} step halvings", trial.inverted_cell,
+                                     settings_.max_backtracks);
+      return finish(trial.failure);
     }
-
-    // Backtracking: halve the step while the trial state inverts a cell or is not finite.
-    double alpha = 1;
-    std::vector<double> trial, trial_lambda;
-    for (int bt = 0;; ++bt) {
-      trial = u_;
-      trial_lambda = lambda_;
-      for (size_t i = 0; i < dv.size(); ++i) trial[i] += alpha * dv[i];
-      for (size_t i = 0; i < dl.size(); ++i) trial_lambda[i] += alpha * dl[i];
-      if (alpha == 1)
-        for (size_t k = 0; k < constrained_.size(); ++k) trial[constrained_[k]] = target_[k];  // exact, free of round-off
-      t0 = std::chrono::steady_clock::now();
-      const auto st = evaluate(step, trial, trial_lambda, rt, true);
-      asm_seconds = seconds_since(t0);
-      const double tn = free_norm(rt.u) + norm2(rt.c);
-      if (st.inverted_cell < 0 && std::isfinite(tn)) break;
-      if (bt == settings_.max_backtracks) {
-        res.iterations.push_back(rec);
-        const bool nan = st.inverted_cell < 0;
-        res.detail = nan ? "the residual is not finite after every step reduction"
-                         : fmt::format("cell {} inverts (det F <= 0) even after {} step halvings", st.inverted_cell, bt);
-        return finish(nan ? NewtonReason::DivergedNaN : NewtonReason::DivergedInvertedElement);
-      }
-      alpha *= 0.5;
-    }
-    u_.swap(trial);
-    lambda_.swap(trial_lambda);
+    const double alpha = trial.alpha;
     r = std::move(rt);
     if (!lambda_.empty()) {
       const std::vector<char> before = constraint_states();
@@ -459,9 +485,7 @@ StepResult QuasiStaticSolver::solve_step(int step) {
       }
       c_reference = std::max(c_reference, norm2(r.c));
       // Contact carries the load of a displacement-driven master: its forces set the scale.
-      std::vector<double> contact_force(n_u);
-      for (size_t i = 0; i < n_u; ++i) contact_force[i] = r.u[i] - r.elastic[i];
-      res.reference_residual = std::max(res.reference_residual, free_norm(contact_force));
+      res.reference_residual = std::max(res.reference_residual, contact_force_norm(r));
     }
     rnorm = free_norm(r.u);
     cnorm = norm2(r.c);

@@ -120,6 +120,21 @@ private:
   fem::InternalForceStatus evaluate(int step, const std::vector<double>& u, const std::vector<double>& lambda,
                                     Residuals& r, bool elastic) const;
   int update_constraint_states(int step, const std::vector<double>& dlambda);
+  // Pieces of solve_step: this step's prescribed values (target_), the norm of the lifted
+  // right side's free rows, the split of a Newton update into u (and p) and multipliers,
+  // the backtracked step (u_ and lambda_ move only when it succeeds), and the norm of the
+  // constraint forces in a residual.
+  struct TrialStep {
+    double alpha = 1;
+    double assembly_seconds = 0;
+    int inverted_cell = -1;
+    NewtonReason failure = NewtonReason::ConvergedAbsolute;  // anything else: failed
+  };
+  void set_step_targets(int step);
+  double lifted_rhs_free_norm() const;
+  void split_update(Vec du, std::vector<double>& dv, std::vector<double>& dl) const;
+  TrialStep take_step(int step, const std::vector<double>& dv, const std::vector<double>& dl, Residuals& rt);
+  double contact_force_norm(const Residuals& r) const;
   std::vector<char> constraint_states() const;
   double free_norm(const std::vector<double>& r) const;
   std::map<std::string, std::array<double, 3>> reactions(const std::vector<double>& r) const;
