@@ -414,9 +414,20 @@ StepResult QuasiStaticSolver::solve_step(int step) {
   // Contact: states seen in this step, with the residual when they were last left.
   std::map<std::vector<char>, double> seen_states;
   int last_changes = 0;
-  if (!lambda_.empty()) {  // the states of the step's initial iterate (the master has moved)
-    last_changes = update_constraint_states(step, std::vector<double>(lambda_.size(), 0.0));
-    if (last_changes > 0) evaluate(step, u_, lambda_, r, false);
+  if (!lambda_.empty()) {
+    // Predictor (choice): while some node is in contact, the first solve of a step keeps the
+    // previous step's states, so the contact rows carry the master's motion into the body
+    // and only the nodes at the edge of the contact zone change afterwards. Re-evaluating
+    // the states on the initial iterate instead (the body not yet moved) activates every
+    // node the master's rigid motion overlaps; PDAS then releases them one or two per
+    // iteration. Measured on hertz-cylinder-2d level 1 with 8 load steps, lu-mumps: steps
+    // 2-8 took 9, 8, 8, 7, 6, 7, 6 iterations that way. With no node in contact the
+    // initial iterate's penetrations set the first states.
+    const std::vector<char> states = constraint_states();
+    if (std::all_of(states.begin(), states.end(), [](char c) { return c == 0; })) {
+      last_changes = update_constraint_states(step, std::vector<double>(lambda_.size(), 0.0));
+      if (last_changes > 0) evaluate(step, u_, lambda_, r, false);
+    }
     cnorm = c_reference = norm2(r.c);
   }
 
