@@ -94,6 +94,7 @@ struct Projection {
 Projection project(const FacetEvaluator& ev, const Facet& m, const Vec2& x, const std::vector<double>& u) {
   Projection p;
   double eta = 0.5;
+  bool converged = false;
   for (int it = 0; it < 30; ++it) {
     p.y = ev.at(m, eta, u);
     const Vec2 r = x - p.y.x;
@@ -103,11 +104,11 @@ Projection project(const FacetEvaluator& ev, const Facet& m, const Vec2& x, cons
     eta -= step;
     if (eta < -0.5 || eta > 1.5) break;  // far off this facet: clamp below
     if (std::abs(step) < 1e-15) {
-      p.found = true;
+      converged = true;
       break;
     }
   }
-  if (eta >= 0 && eta <= 1 && p.found) {
+  if (converged && eta >= 0 && eta <= 1) {
     p.y = ev.at(m, eta, u);
     p.interior = true;
     p.F_eta = -p.y.dx.squaredNorm() + (x - p.y.x).dot(p.y.ddx);

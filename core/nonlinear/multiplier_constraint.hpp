@@ -54,7 +54,9 @@ public:
   // After a Newton update: applies the state machine (transitions A-E of Sec. 4.5) at the
   // new iterate; returns how many states changed.
   virtual int update_states(int step, const std::vector<double>& u, const double* lambda, const double* dlambda) = 0;
-  // The current states, one char per multiplier node (for cycle detection).
+  // The current states, one char per multiplier node (for cycle detection and the step
+  // predictor); kFreeState marks a node that carries no constraint (inactive).
+  static constexpr char kFreeState = 0;
   virtual std::vector<char> states() const = 0;
   // The mass-matrix part of the Schur approximation (32), Pi M_lambda Pi: Pi projects on the
   // constrained directions (all of them at sticking nodes, the normal at slipping nodes,

@@ -50,9 +50,9 @@ std::string to_string(Forcing f) { return f == Forcing::Fixed ? "fixed" : "eisen
 
 namespace {
 
-// Eisenstat-Walker choice 2 with PETSc's defaults and Kelley's floor (see newton.hpp).
 constexpr double kContactForcingCap = 1e-4;  // the backends' fixed Krylov rtol
 
+// Eisenstat-Walker choice 2 with PETSc's defaults and Kelley's floor (see newton.hpp).
 double next_forcing_term(double eta_prev, double r_now, double r_prev, double tolerance, bool first) {
   constexpr double gamma = 0.9, alpha = 2, eta_first = 0.3, eta_max = 0.9, threshold = 0.1;
   double eta = first ? eta_first : gamma * std::pow(r_now / r_prev, alpha);
@@ -355,6 +355,7 @@ QuasiStaticSolver::TrialStep QuasiStaticSolver::take_step(int step, const std::v
     if (st.inverted_cell < 0 && std::isfinite(tn)) break;
     if (bt == settings_.max_backtracks) {
       t.inverted_cell = st.inverted_cell;
+      t.failed = true;
       t.failure = st.inverted_cell < 0 ? NewtonReason::DivergedNaN : NewtonReason::DivergedInvertedElement;
       return t;
     }
@@ -424,7 +425,7 @@ StepResult QuasiStaticSolver::solve_step(int step) {
     // 2-8 took 9, 8, 8, 7, 6, 7, 6 iterations that way. With no node in contact the
     // initial iterate's penetrations set the first states.
     const std::vector<char> states = constraint_states();
-    if (std::all_of(states.begin(), states.end(), [](char c) { return c == 0; })) {
+    if (std::all_of(states.begin(), states.end(), [](char c) { return c == MultiplierConstraint::kFreeState; })) {
       last_changes = update_constraint_states(step, std::vector<double>(lambda_.size(), 0.0));
       if (last_changes > 0) evaluate(step, u_, lambda_, r, false);
     }
@@ -477,7 +478,7 @@ StepResult QuasiStaticSolver::solve_step(int step) {
     split_update(du, dv, dl);
     const TrialStep trial = take_step(step, dv, dl, rt);
     asm_seconds = trial.assembly_seconds;
-    if (trial.failure != NewtonReason::ConvergedAbsolute) {
+    if (trial.failed) {
       res.iterations.push_back(rec);
       res.detail = trial.failure == NewtonReason::DivergedNaN
                        ? "the residual is not finite after every step reduction"

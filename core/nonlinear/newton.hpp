@@ -128,7 +128,8 @@ private:
     double alpha = 1;
     double assembly_seconds = 0;
     int inverted_cell = -1;
-    NewtonReason failure = NewtonReason::ConvergedAbsolute;  // anything else: failed
+    bool failed = false;
+    NewtonReason failure = NewtonReason::DivergedNaN;  // when failed
   };
   void set_step_targets(int step);
   double lifted_rhs_free_norm() const;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <random>
+#include <string>
 
 #include "contact/rigid_plane_contact.hpp"
 #include "contact/surface_contact.hpp"
@@ -13,13 +14,15 @@
 namespace stiction::contact {
 namespace {
 
-const char* kBlockOnPlane = R"(
+const std::string kMaterial = R"(
 [[material]]
 name = "m"
 model = "linear"
 E = 2.0
 nu = 0.3
+)";
 
+const std::string kBlockOnPlane = kMaterial + R"(
 [[body]]
 name = "block"
 material = "m"
@@ -34,13 +37,7 @@ motion = [0.02, 0.01, 0.005]
 friction = 0.4
 )";
 
-const char* kBlockOnBlock = R"(
-[[material]]
-name = "m"
-model = "linear"
-E = 2.0
-nu = 0.3
-
+const std::string kBlockOnBlock = kMaterial + R"(
 [[body]]
 name = "base"
 material = "m"

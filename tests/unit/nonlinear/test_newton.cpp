@@ -232,7 +232,9 @@ TEST(Newton, ConvergesQuadraticallyAndBalancesTheLoad) {
     for (size_t k = 1; k < r.iterations.size(); ++k) {
       const double prev = r.iterations[k - 1].residual / r.reference_residual;
       const double next = r.iterations[k].residual / r.reference_residual;
-      if (prev < 1e-2 && next > 1e-13) EXPECT_LT(next, 50 * prev * prev) << "step " << r.step << " iteration " << k;
+      if (prev < 1e-2 && next > 1e-13) {
+        EXPECT_LT(next, 50 * prev * prev) << "step " << r.step << " iteration " << k;
+      }
     }
   }
   // The clamp carries the whole end load: 0.5 * step per unit height, unit height.
