@@ -9,6 +9,9 @@
 //     candidate facets come from a Boost.Geometry R-tree over the master facets' bounding
 //     boxes, rebuilt at every evaluation. A point whose projection is farther than the
 //     search radius, falls off the facet, or sees the master's back does not contribute.
+//     Where a point projects into the interior of two master facets sharing a vertex (the
+//     concave side of that vertex), the contact point blends both projections so that it
+//     moves continuously (see contact_point in the .cpp).
 //   * segments (mortar-style integration, choice): each slave facet is cut where the
 //     projections of the master facet's end points land, and each piece is integrated with
 //     its own Gauss rule, so the integrands are smooth on every piece and B_ext is exact
