@@ -84,6 +84,10 @@ protected:
   int previous_step_ = 0;
 
 private:
+  // The mean penetration depth an inactive node must exceed to enter contact at this update:
+  // a fraction of the deepest penetrated inactive node's.
+  double entry_depth(const std::vector<NodeKinematics>& nodes) const;
+
   std::string name_;
   StateTolerances tolerances_;
   std::vector<NodeState> state_;
