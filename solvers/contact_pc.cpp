@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstdlib>
 
 #include "common/error.hpp"
@@ -13,18 +14,26 @@ ContactPreconditioner::ContactPreconditioner(MPI_Comm comm, const std::string& p
   STICTION_PETSC(KSPSetOptionsPrefix(ksp_ss_, (prefix + "ss_").c_str()));
 }
 
-double ContactPreconditioner::scale_from_options(Mat M, Mat mass) const {
+double ContactPreconditioner::scale_from_options(Mat M, Mat mass) {
   char value[64] = "auto";
   PetscBool set;
   STICTION_PETSC(PetscOptionsGetString(nullptr, prefix_.c_str(), "-contact_scale", value, sizeof value, &set));
   const std::string v = value;
-  if (v != "auto") {
-    char* end;
-    const double s = std::strtod(value, &end);
-    if (*end || !(s > 0))
-      throw Error(fmt::format("-{}contact_scale: '{}' is neither 'auto' nor a positive number", prefix_, v));
-    return s;
-  }
+  estimates_.diagonal = diagonal_compliance(M, mass);
+  estimates_.smooth = smooth_mode_compliance(M, mass);
+  if (v == "auto")
+    return estimates_.smooth > 0 ? std::sqrt(estimates_.diagonal * estimates_.smooth) : estimates_.diagonal;
+  if (v == "diagonal") return estimates_.diagonal;
+  if (v == "smooth") return estimates_.smooth > 0 ? estimates_.smooth : estimates_.diagonal;
+  char* end;
+  const double number = std::strtod(value, &end);
+  if (*end || !(number > 0))
+    throw Error(fmt::format("-{}contact_scale: '{}' is none of auto, diagonal, smooth or a positive number", prefix_,
+                            v));
+  return number;
+}
+
+double ContactPreconditioner::diagonal_compliance(Mat M, Mat mass) const {
   // s = sum diag(B2 diag(A)^-1 (-B1)) / sum diag(Pi M Pi), over rows where the mass is nonzero.
   PetscVec dA, dA_inv;
   STICTION_PETSC(MatCreateVecs(M, nullptr, dA.out()));
@@ -54,6 +63,61 @@ double ContactPreconditioner::scale_from_options(Mat M, Mat mass) const {
   STICTION_PETSC(VecRestoreArrayRead(dp, &p));
   STICTION_PETSC(VecRestoreArrayRead(dm, &m));
   return den > 0 && num > 0 ? num / den : 1.0;
+}
+
+double ContactPreconditioner::smooth_mode_compliance(Mat M, Mat mass) const {
+  // w ~ Pi 1: the constrained directions of every node, as smooth as the surface allows.
+  PetscVec ones, w, row_sum, v, full, y;
+  STICTION_PETSC(MatCreateVecs(mass, ones.out(), w.out()));
+  STICTION_PETSC(VecDuplicate(w, row_sum.out()));
+  STICTION_PETSC(VecSet(ones, 1.0));
+  STICTION_PETSC(MatMult(mass, ones, w));
+  {
+    // Row sums of |Pi M Pi|.
+    PetscInt first, last;
+    STICTION_PETSC(MatGetOwnershipRange(mass, &first, &last));
+    for (PetscInt row = first; row < last; ++row) {
+      PetscInt ncols;
+      const PetscScalar* values;
+      STICTION_PETSC(MatGetRow(mass, row, &ncols, nullptr, &values));
+      double sum = 0;
+      for (PetscInt k = 0; k < ncols; ++k) sum += std::abs(values[k]);
+      STICTION_PETSC(MatRestoreRow(mass, row, &ncols, nullptr, &values));
+      STICTION_PETSC(VecSetValue(row_sum, row, sum, INSERT_VALUES));
+    }
+    STICTION_PETSC(VecAssemblyBegin(row_sum));
+    STICTION_PETSC(VecAssemblyEnd(row_sum));
+  }
+  {
+    PetscScalar* a;
+    const PetscScalar* r;
+    PetscInt n;
+    STICTION_PETSC(VecGetLocalSize(w, &n));
+    STICTION_PETSC(VecGetArray(w, &a));
+    STICTION_PETSC(VecGetArrayRead(row_sum, &r));
+    for (PetscInt i = 0; i < n; ++i) a[i] = r[i] > 0 ? a[i] / r[i] : 0.0;
+    STICTION_PETSC(VecRestoreArrayRead(row_sum, &r));
+    STICTION_PETSC(VecRestoreArray(w, &a));
+  }
+  // s = -w^T B2 P_A^-1 B1 w / w^T (Pi M Pi) w.
+  STICTION_PETSC(MatCreateVecs(M, full.out(), y.out()));
+  STICTION_PETSC(VecZeroEntries(full));
+  Vec full_a;
+  STICTION_PETSC(VecGetSubVector(full, is_a_, &full_a));
+  STICTION_PETSC(MatMult(B1_, w, full_a));
+  STICTION_PETSC(VecRestoreSubVector(full, is_a_, &full_a));
+  STICTION_PETSC(VecZeroEntries(y));
+  inner_->apply(full, y);
+  Vec y_a;
+  STICTION_PETSC(MatCreateVecs(B2_, nullptr, v.out()));
+  STICTION_PETSC(VecGetSubVector(y, is_a_, &y_a));
+  STICTION_PETSC(MatMult(B2_, y_a, v));
+  STICTION_PETSC(VecRestoreSubVector(y, is_a_, &y_a));
+  PetscScalar numerator, denominator;
+  STICTION_PETSC(VecDot(v, w, &numerator));
+  STICTION_PETSC(MatMult(mass, w, row_sum));
+  STICTION_PETSC(VecDot(row_sum, w, &denominator));
+  return denominator > 0 && -numerator > 0 ? -numerator / denominator : 0.0;
 }
 
 void ContactPreconditioner::setup(Mat M, IS multipliers, Mat schur_mass, const ShellPreconditioner& inner) {

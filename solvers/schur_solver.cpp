@@ -40,7 +40,11 @@ void SchurSolver::collect_setup_figures(std::map<std::string, double>& extra) co
   add_mumps_figures(hp_.linear_solver(), "ll_", extra);
   const double c = parse_operator_complexity(setup_output());
   if (c > 0) extra["amg_operator_complexity"] = c;
-  if (contact_) extra["contact_schur_scale"] = contact_->scale();
+  if (contact_) {
+    extra["contact_schur_scale"] = contact_->scale();
+    extra["contact_scale_diagonal"] = contact_->scale_estimates().diagonal;
+    extra["contact_scale_smooth"] = contact_->scale_estimates().smooth;
+  }
 }
 
 std::string SchurSolver::describe() const {
