@@ -35,7 +35,7 @@ struct HertzCase {
 const double kNu = 0.3;  // E = 1, R = 1 in both scenes
 const HertzCase kCylinderOnPlane{"hertz-cylinder-2d", 1.0, 1.0 / (1 - kNu * kNu)};
 const HertzCase kTwoCylinders{"hertz-cylinders-2d", 0.5, 1.0 / (2 * (1 - kNu * kNu))};
-const HertzCase kSphereOnPlane{"hertz-sphere-3d", 1.0, 1.0 / (1 - kNu * kNu), 3};
+const HertzCase kSphereOnPlane{"hertz-sphere-3d", 1.0, 1.0 / (1 - kNu * kNu), 3, "schur-amg"};
 
 HertzFigures hertz_figures(const HertzCase& c, int level) {
   const SolvedScene s = solve_builtin(c.scene, level, c.backend);
@@ -79,7 +79,11 @@ HertzFigures hertz_figures(const HertzCase& c, int level) {
   return h;
 }
 
-void check_hertz(const HertzCase& c, int finest, bool assert_trend = true) {
+// Which peak pressure the refinement trend is asserted on: the multiplier at the node on the
+// axis, or p0 of the least-squares fit over every node in contact.
+enum class PeakEstimate { AxisNode, Fit };
+
+void check_hertz(const HertzCase& c, int finest, PeakEstimate trend_on = PeakEstimate::AxisNode) {
   std::vector<HertzFigures> levels;
   for (int level = 0; level <= finest; ++level) {
     levels.push_back(hertz_figures(c, level));
@@ -93,9 +97,11 @@ void check_hertz(const HertzCase& c, int finest, bool assert_trend = true) {
   EXPECT_GE(fine.first_inactive, fine.a_hertz * 0.98);
   EXPECT_NEAR(fine.a_fit / fine.a_hertz, 1.0, 0.02);
   EXPECT_NEAR(fine.p0 / fine.p0_hertz, 1.0, 0.02);
-  if (!assert_trend) return;
+  EXPECT_NEAR(fine.p0_fit / fine.p0_hertz, 1.0, 0.02);
   // Converging under refinement: the finest level is closer to Hertz than the coarsest.
-  auto err_p0 = [](const HertzFigures& h) { return std::abs(h.p0 / h.p0_hertz - 1); };
+  auto err_p0 = [&](const HertzFigures& h) {
+    return std::abs((trend_on == PeakEstimate::AxisNode ? h.p0 : h.p0_fit) / h.p0_hertz - 1);
+  };
   auto err_a = [](const HertzFigures& h) { return std::abs(h.a_fit / h.a_hertz - 1); };
   EXPECT_LT(err_p0(fine), err_p0(levels.front()));
   EXPECT_LT(err_a(fine), err_a(levels.front()));
@@ -105,11 +111,12 @@ TEST(Hertz2D, CylinderOnRigidPlaneConvergesToHertz) { check_hertz(kCylinderOnPla
 
 TEST(Hertz2D, TwoDeformableCylindersConvergeToHertz) { check_hertz(kTwoCylinders, 2); }
 
-// 3D: within 2% at level 1 (25 500 unknowns). Not asserted (measured, lu-mumps): the trend
-// from level 0 to 1 (a_fit error 0.87% -> 1.28%, p0 at the pole node 0.14% -> 1.8%, p0 of
-// the fit 1.7% -> 0.12%); level 2 (170 000 unknowns) is too slow for this suite with LU,
-// and with schur-amg its second load step does not converge (the active set chatters).
-TEST(Hertz3D, SphereOnRigidPlaneWithinTwoPercentOfHertz) { check_hertz(kSphereOnPlane, 1, false); }
+// 3D, levels 0-2 (170 000 unknowns at level 2, solved with schur-amg: LU takes minutes
+// there). Measured: a_fit error 0.87% / 1.28% / 0.32%, p0 of the fit 1.73% / 0.12% / 0.24%,
+// p0 at the pole node 0.14% / 1.79% / 0.71%. The pole node's multiplier is one value of a P1
+// field on a graded unstructured mesh and moves with the local mesh, so the trend is asserted
+// on the fit (every node in contact) and the node is held to 2% only.
+TEST(Hertz3D, SphereOnRigidPlaneConvergesToHertz) { check_hertz(kSphereOnPlane, 2, PeakEstimate::Fit); }
 
 }  // namespace
 }  // namespace stiction::test
