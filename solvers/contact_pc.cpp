@@ -62,7 +62,9 @@ double ContactPreconditioner::diagonal_compliance(Mat M, Mat mass) const {
     if (m[i] > 0) num -= p[i], den += m[i];
   STICTION_PETSC(VecRestoreArrayRead(dp, &p));
   STICTION_PETSC(VecRestoreArrayRead(dm, &m));
-  return den > 0 && num > 0 ? num / den : 1.0;
+  double sums[2] = {num, den};
+  MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, PetscObjectComm(reinterpret_cast<PetscObject>(mass)));
+  return sums[1] > 0 && sums[0] > 0 ? sums[0] / sums[1] : 1.0;
 }
 
 double ContactPreconditioner::smooth_mode_compliance(Mat M, Mat mass) const {
