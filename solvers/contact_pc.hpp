@@ -21,8 +21,8 @@
 //             constrained field, P_A^-1 the inner preconditioner (the body end);
 // and -<prefix>contact_scale picks: auto (default) sqrt(s_d s_s), the geometric mean, which
 // keeps the worst ratio of S~ to S_g over that range smallest; diagonal; smooth; or <x>
-// (1 is the unscaled (32)). Measured, schur-amg Krylov iterations per Newton step at levels
-// 0 / 1 / 2:
+// (1 is the unscaled (32)). Measured, schur-amg Krylov iterations per linear solve at levels
+// 0 / 1 / 2 (reports/contact-schur-scale/, every contact scene there):
 //                        s = 1               diagonal            smooth              auto
 //   sliding-block-2d     20.3 / 23.6 / 24.5  20.4 / 24.9 / 29.7  19.2 / 21.5 / 21.3  17.7 / 19.9 / 20.7
 //   hertz-cylinder-2d    45.8 / 57.6 / 70.8  19.4 / 23.2 / 30.6  31.8 / 40.6 / 49.4  18.6 / 21.2 / 24.2
