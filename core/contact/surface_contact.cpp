@@ -281,6 +281,96 @@ std::vector<Branch> contact_point(const FacetEvaluator& ev, const Facet& f, cons
   return out;
 }
 
+// One slave quadrature point at parameter xi of facet f and its contact point: the gap
+// vector r = x1 - y, the motions since the previous step (15)-(16), and per branch the
+// master's motion and its rate along eta. `branches` is empty when the point has no
+// contact point.
+struct PointKinematics {
+  FacetPoint s;
+  std::vector<Branch> branches;
+  std::map<PetscInt, double> dw0;  // d w_0 / du of a blended point (w_1 = 1 - w_0)
+  Vec2 r = Vec2::Zero(), slave_motion = Vec2::Zero(), master_motion = Vec2::Zero();
+  std::vector<Vec2> branch_motion, branch_rate;
+};
+
+PointKinematics point_kinematics(const FacetEvaluator& ev, const Facet& f, double xi,
+                                 const std::vector<const Facet*>& candidates, const std::vector<double>& u,
+                                 const std::vector<double>& u_previous, double search_radius, bool with_derivatives) {
+  PointKinematics p;
+  p.s = ev.at(f, xi, u);
+  p.branches = contact_point(ev, f, p.s, candidates, u, search_radius, with_derivatives, p.dw0);
+  Vec2 y = Vec2::Zero();
+  for (const Branch& b : p.branches) {
+    p.branch_motion.push_back(ev.combine(*b.facet, b.p.y.N, u) - ev.combine(*b.facet, b.p.y.N, u_previous));
+    p.branch_rate.push_back(ev.combine(*b.facet, b.p.y.dN, u) - ev.combine(*b.facet, b.p.y.dN, u_previous));
+    y += b.weight * b.p.y.x;
+    p.master_motion += b.weight * p.branch_motion.back();
+  }
+  p.r = p.s.x - y;
+  p.slave_motion = ev.combine(f, p.s.N, u) - ev.combine(f, p.s.N, u_previous);
+  return p;
+}
+
+// Node i's share wphi = w phi_i of the point: G_i, S_i and, when asked, their derivatives.
+void add_node_kinematics(const FacetEvaluator& ev, const Facet& f, const PointKinematics& p, double wphi,
+                         bool with_derivatives, NodeKinematics& node) {
+  node.G += lift(wphi * p.r);
+  node.S += lift(wphi * (p.slave_motion - p.master_motion));
+  if (!with_derivatives) return;
+  for (int a = 0; a < ev.n(); ++a)
+    for (int c = 0; c < 2; ++c) {
+      const PetscInt slave_dof = static_cast<PetscInt>(f.nodes[a]) * 2 + c;
+      accumulate(node.dG, slave_dof, Vec3(wphi * p.s.N[a] * Vec3::Unit(c)));
+      accumulate(node.dS, slave_dof, Vec3(wphi * p.s.N[a] * Vec3::Unit(c)));
+    }
+  for (size_t bi = 0; bi < p.branches.size(); ++bi) {
+    const Branch& b = p.branches[bi];
+    const double wb = wphi * b.weight;
+    for (int a = 0; a < ev.n(); ++a)
+      for (int c = 0; c < 2; ++c) {
+        const PetscInt master_dof = static_cast<PetscInt>(b.facet->nodes[a]) * 2 + c;
+        accumulate(node.dG, master_dof, Vec3(-wb * b.p.y.N[a] * Vec3::Unit(c)));
+        accumulate(node.dS, master_dof, Vec3(-wb * b.p.y.N[a] * Vec3::Unit(c)));
+      }
+    for (const auto& [dof, de] : b.deta) {
+      accumulate(node.dG, dof, lift(-wb * de * b.p.y.dx));
+      accumulate(node.dS, dof, lift(-wb * de * p.branch_rate[bi]));
+    }
+  }
+  if (p.branches.size() == 2)
+    for (const auto& [dof, dw] : p.dw0) {
+      accumulate(node.dG, dof, lift(-wphi * dw * (p.branches[0].p.y.x - p.branches[1].p.y.x)));
+      accumulate(node.dS, dof, lift(-wphi * dw * (p.branch_motion[0] - p.branch_motion[1])));
+    }
+}
+
+// The constraint forces of node i's multiplier lam at the point: the slave carries +lambda,
+// the master -lambda at the contact point (r_u -= B_int^T lambda - B_ext^T lambda), with the
+// blocks -B^T (columns row0..) and d(-B^T lambda)/du when jacobian is not null.
+void add_node_forces(const FacetEvaluator& ev, const Facet& f, const PointKinematics& p, double wphi,
+                     const Vec3& lam, PetscInt row0, std::vector<double>& r_u, nonlinear::SparseEntries* jacobian) {
+  for (int a = 0; a < ev.n(); ++a)
+    for (int c = 0; c < 2; ++c) {
+      const PetscInt slave_dof = static_cast<PetscInt>(f.nodes[a]) * 2 + c;
+      r_u[static_cast<size_t>(slave_dof)] -= wphi * p.s.N[a] * lam[c];
+      if (jacobian) jacobian->add(slave_dof, row0 + c, -wphi * p.s.N[a]);
+    }
+  for (size_t bi = 0; bi < p.branches.size(); ++bi) {
+    const Branch& b = p.branches[bi];
+    const double wb = wphi * b.weight, dw_sign = bi == 0 ? 1.0 : -1.0;  // d w_1 = -d w_0
+    for (int a = 0; a < ev.n(); ++a)
+      for (int c = 0; c < 2; ++c) {
+        const PetscInt master_dof = static_cast<PetscInt>(b.facet->nodes[a]) * 2 + c;
+        r_u[static_cast<size_t>(master_dof)] += wb * b.p.y.N[a] * lam[c];
+        if (!jacobian) continue;
+        jacobian->add(master_dof, row0 + c, wb * b.p.y.N[a]);
+        if (lam[c] == 0) continue;
+        for (const auto& [dof, de] : b.deta) jacobian->add(master_dof, dof, wb * b.p.y.dN[a] * lam[c] * de);
+        for (const auto& [dof, dw] : p.dw0) jacobian->add(master_dof, dof, dw_sign * wphi * b.p.y.N[a] * lam[c] * dw);
+      }
+  }
+}
+
 }  // namespace
 
 SurfaceContact::SurfaceContact(std::string name, const fem::FieldSpace& space, int slave_tag, int master_tag,
@@ -352,7 +442,6 @@ void SurfaceContact::compute_kinematics(int, const std::vector<double>& u, const
 
   const fem::QuadratureRule rule = fem::simplex_quadrature(1, 7);
   std::vector<std::pair<Box, int>> hits;
-  std::map<PetscInt, double> dw0;
   for (const Facet& f : slave_facets_) {
     hits.clear();
     tree.query(bgi::intersects(facet_box(ev, f, u, search_radius_)), std::back_inserter(hits));
@@ -377,74 +466,17 @@ void SurfaceContact::compute_kinematics(int, const std::vector<double>& u, const
       if (hi - lo < 1e-14) continue;
       for (int q = 0; q < rule.size(); ++q) {
         const double xi = lo + (hi - lo) * rule.point(q)[0], w = rule.weights[q] * (hi - lo) * length;
-        const FacetPoint s = ev.at(f, xi, u);
-        dw0.clear();
-        const std::vector<Branch> branches =
-            contact_point(ev, f, s, candidates, u, search_radius_, with_derivatives, dw0);
-        if (branches.empty()) continue;
-        // Per branch: position, motion since the previous step and its rate along eta.
-        Vec2 y = Vec2::Zero(), master_motion = Vec2::Zero();
-        std::vector<Vec2> branch_motion, branch_rate;
-        for (const Branch& b : branches) {
-          branch_motion.push_back(ev.combine(*b.facet, b.p.y.N, u) - ev.combine(*b.facet, b.p.y.N, u_previous_));
-          branch_rate.push_back(ev.combine(*b.facet, b.p.y.dN, u) - ev.combine(*b.facet, b.p.y.dN, u_previous_));
-          y += b.weight * b.p.y.x;
-          master_motion += b.weight * branch_motion.back();
-        }
-        const Vec2 r = s.x - y;
-        const Vec2 slave_motion = ev.combine(f, s.N, u) - ev.combine(f, s.N, u_previous_);
+        const PointKinematics p =
+            point_kinematics(ev, f, xi, candidates, u, u_previous_, search_radius_, with_derivatives);
+        if (p.branches.empty()) continue;
         for (int k = 0; k < 2; ++k) {
           const int i = f.node_of_vertex[k];
           const double wphi = w * (k == 0 ? 1 - xi : xi);
-          NodeKinematics& node = nodes[i];
-          node.G += lift(wphi * r);
-          node.S += lift(wphi * (slave_motion - master_motion));
+          add_node_kinematics(ev, f, p, wphi, with_derivatives, nodes[i]);
           covered[i] += wphi;
+          if (!r_u) continue;
           const Vec3 lam = lambda ? Vec3(lambda[2 * i], lambda[2 * i + 1], 0.0) : Vec3::Zero();
-          const PetscInt row0 = offset + static_cast<PetscInt>(i) * 2;
-          for (int a = 0; a < ev.n(); ++a)
-            for (int c = 0; c < 2; ++c) {
-              const PetscInt slave_dof = static_cast<PetscInt>(f.nodes[a]) * 2 + c;
-              if (with_derivatives) {
-                accumulate(node.dG, slave_dof, Vec3(wphi * s.N[a] * Vec3::Unit(c)));
-                accumulate(node.dS, slave_dof, Vec3(wphi * s.N[a] * Vec3::Unit(c)));
-              }
-              if (!r_u) continue;
-              // The slave carries +lambda, the master -lambda at the contact point.
-              (*r_u)[static_cast<size_t>(slave_dof)] -= wphi * s.N[a] * lam[c];
-              if (jacobian) jacobian->add(slave_dof, row0 + c, -wphi * s.N[a]);
-            }
-          for (size_t bi = 0; bi < branches.size(); ++bi) {
-            const Branch& b = branches[bi];
-            const double wb = wphi * b.weight;
-            const double dw_sign = bi == 0 ? 1.0 : -1.0;  // d w_1 = -d w_0
-            for (int a = 0; a < ev.n(); ++a)
-              for (int c = 0; c < 2; ++c) {
-                const PetscInt master_dof = static_cast<PetscInt>(b.facet->nodes[a]) * 2 + c;
-                if (with_derivatives) {
-                  accumulate(node.dG, master_dof, Vec3(-wb * b.p.y.N[a] * Vec3::Unit(c)));
-                  accumulate(node.dS, master_dof, Vec3(-wb * b.p.y.N[a] * Vec3::Unit(c)));
-                }
-                if (!r_u) continue;
-                (*r_u)[static_cast<size_t>(master_dof)] += wb * b.p.y.N[a] * lam[c];
-                if (!jacobian) continue;
-                jacobian->add(master_dof, row0 + c, wb * b.p.y.N[a]);
-                if (lam[c] == 0) continue;
-                for (const auto& [dof, de] : b.deta) jacobian->add(master_dof, dof, wb * b.p.y.dN[a] * lam[c] * de);
-                for (const auto& [dof, dw] : dw0)
-                  jacobian->add(master_dof, dof, dw_sign * wphi * b.p.y.N[a] * lam[c] * dw);
-              }
-            if (!with_derivatives) continue;
-            for (const auto& [dof, de] : b.deta) {
-              accumulate(node.dG, dof, lift(-wb * de * b.p.y.dx));
-              accumulate(node.dS, dof, lift(-wb * de * branch_rate[bi]));
-            }
-          }
-          if (branches.size() == 2)
-            for (const auto& [dof, dw] : dw0) {
-              accumulate(node.dG, dof, lift(-wphi * dw * (branches[0].p.y.x - branches[1].p.y.x)));
-              accumulate(node.dS, dof, lift(-wphi * dw * (branch_motion[0] - branch_motion[1])));
-            }
+          add_node_forces(ev, f, p, wphi, lam, offset + static_cast<PetscInt>(i) * 2, *r_u, jacobian);
         }
       }
     }

@@ -80,7 +80,9 @@ TEST_P(EdgeFunctions, AreOneAtTheirMidpoint) {
     // Nodal P2 is Lagrange: every other function vanishes at the midpoint.
     if (kind == BasisKind::P2Nodal)
       for (int k = 0; k < n; ++k)
-        if (k != d + 1 + e) EXPECT_NEAR(N[k], 0.0, 1e-14);
+        if (k != d + 1 + e) {
+          EXPECT_NEAR(N[k], 0.0, 1e-14);
+        }
   }
 }
 
