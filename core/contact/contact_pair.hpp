@@ -28,11 +28,16 @@ struct ContactSettings {
   //   Exact    always linearised (exact Newton);
   //   Dropped  never, as the paper (Sec. 4.3, term (1) of (23)): a quasi-Newton step;
   //   Settled  linearised once an update changed no contact state (default, choice).
-  // Measured (lu-mumps, level 0): hertz-cylinders-2d: Exact cycles in step 1 (the pressure
-  // of the nodes that enter contact together tilts their normals ever further), Dropped
-  // 10 + 7 iterations, Settled 9 + 5. self-contact-2d: Exact 3/3/7/8, Settled 3/3/7/11;
-  // with the arm pushed 0.2 instead of 0.15, Dropped stops at step 4 after 25 iterations
-  // with no state change (linear convergence), Exact converges (6/13/10), Settled cycles.
+  // Measured with schur-amg, Newton iterations per load step at levels 0 / 1 / 2 (session 4):
+  //   hertz-cylinders-2d  Settled 5+6 / 7+6 / 8+6,  Dropped 7+8 / 7+9 / 9+10,  Exact fails at
+  //                       every level (level 0: the active set cycles in step 2 while the
+  //                       residual grows to 1e1; also with lu-mumps);
+  //   self-contact-2d     Settled 3+3+3+6+7+5 / 3+3+3+6+7+6 / 3+3+3+7+9+6, Dropped needs up
+  //                       to 22 in the last step and fails at level 2, Exact fails at 1 and 2.
+  // The price of Settled is in the Krylov solver: the normals' terms (of order p / h) make
+  // schur-amg's Krylov iterations per solve on hertz-cylinders-2d grow 14.3 / 17.8 / 22.4,
+  // against 8.4 / 9.0 / 9.4 with Dropped (S~ (32) does not model them; with the exact S_g
+  // the count stays near 9.5).
   enum class NormalLinearisation { Exact, Dropped, Settled };
   NormalLinearisation normal_linearisation = NormalLinearisation::Settled;
 };
