@@ -1,12 +1,19 @@
-// Coulomb friction against a rigid plane (built-in scene sliding-block-2d): an elastic block
+// Coulomb friction. Against a rigid plane (built-in scene sliding-block-2d): an elastic block
 // is pressed on the plane (step 1), its top pulled sideways a little (step 2: the tangential
 // force stays below mu N, nodes stick) and then far (step 3: the block slides, every contact
-// node slips and the tangential force is mu N).
+// node slips and the tangential force is mu N). Between two deformable bodies: the
+// Cattaneo-Mindlin stick zone of two cylinders (below).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
+#include "contact/contact_pair.hpp"
 #include "contact/rigid_plane_contact.hpp"
+#include "nonlinear/newton.hpp"
+#include "registry.hpp"
+#include "scene/scene.hpp"
 #include "support/solve_scene.hpp"
 
 namespace stiction::test {
@@ -33,6 +40,120 @@ TEST(Friction, SticksBelowMuNThenSlidesWithMuN) {
   // Friction opposes the block's slip (+x): the ground pulls it back.
   EXPECT_LT(slide.force[0], 0);
   for (const auto& step : s.steps) EXPECT_LT(step.iterations.size(), 10u) << "load step " << step.step;
+}
+
+
+// Cattaneo-Mindlin in plane strain: two identical elastic cylinders (R = 1, so R* = 1/2 and
+// E* = E / (2 (1 - nu^2)); identical bodies, so normal and tangential tractions do not
+// couple) are pressed together (step 1: every contact node sticks) and then sheared by
+// moving the lower base sideways in four steps, Q < mu P. Mindlin's stick zone is
+// |x| <= c with c = a sqrt(1 - Q / (mu P)), a = sqrt(4 P R* / (pi E*)) (Johnson, Contact
+// Mechanics, 7.2). Per step, c must lie between the outermost sticking node and the
+// innermost slipping one, give or take 2% of a. Measured at level 1 (node spacing 0.002 to
+// 0.004 there, a = 0.078): Q / mu P = 0.17, 0.34, 0.51, 0.67 give c = 0.0711, 0.0634,
+// 0.0547, 0.0448 against brackets [0.0701, 0.0743], [0.0622, 0.0661], [0.0511, 0.0547],
+// [0.0409, 0.0442]: the last two lie 0.1% and 0.8% of a outside.
+const char* kCattaneoMindlin = R"(
+[scene]
+name = "cattaneo-mindlin-2d"
+description = "two identical cylinders pressed together, then sheared below mu P"
+
+[[material]]
+name = "steel-like"
+model = "linear"
+E = 1.0
+nu = 0.3
+
+[[body]]
+name = "upper"
+material = "steel-like"
+[body.mesh]
+generator = "polygon"
+h = 0.1
+points = [-1.0, 1.0, 0.0, 0.0, 1.0, 1.0]
+sides = ["surface", "surface", "top"]
+arc_sides = [0, 1]
+arc_centers = [0.0, 1.0, 0.0, 1.0]
+point_sizes = [0.1, 0.004, 0.1]
+
+[[body]]
+name = "lower"
+material = "steel-like"
+[body.mesh]
+generator = "polygon"
+h = 0.1
+points = [-1.0, -1.0, 1.0, -1.0, 0.0, 0.0]
+sides = ["base", "surface", "surface"]
+arc_sides = [1, 2]
+arc_centers = [0.0, -1.0, 0.0, -1.0]
+point_sizes = [0.1, 0.1, 0.004]
+
+[[dirichlet]]
+body = "upper"
+boundary = "top"
+components = ["x", "y"]
+value = [0.0, 0.0]
+
+[[dirichlet]]
+body = "lower"
+boundary = "base"
+components = ["y"]
+value = [0.02]
+schedule = [1.0, 1.0, 1.0, 1.0, 1.0]
+
+[[dirichlet]]
+body = "lower"
+boundary = "base"
+components = ["x"]
+value = [0.007]
+schedule = [0.0, 0.25, 0.5, 0.75, 1.0]
+
+[[contact]]
+name = "interface"
+body = "upper"
+boundary = "surface"
+master = "surface"
+master_body = "lower"
+master_boundary = "surface"
+friction = 0.3
+
+[load]
+steps = 5
+
+[output]
+vtu = false
+)";
+
+TEST(Friction, CattaneoMindlinStickZoneOfTwoCylinders) {
+  const int level = 1;
+  auto sc = scene::build_scene(kCattaneoMindlin, "cattaneo-mindlin-2d", ".", level);
+  auto solver = solvers::create_solver("lu-mumps", PETSC_COMM_WORLD);
+  nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, sc->problem, sc->newton, *solver);
+  const auto& pair = dynamic_cast<const contact::ContactPair&>(*sc->contacts.at(0));
+  const double mu = 0.3, R_star = 0.5, E_star = 1.0 / (2 * (1 - 0.3 * 0.3));
+  for (int step = 1; step <= sc->problem.n_steps; ++step) {
+    const auto r = newton.solve_step(step);
+    ASSERT_TRUE(r.converged()) << "step " << step << ": " << r.detail;
+    const double P = r.reactions.at("lower/base")[1], Q = r.reactions.at("lower/base")[0];
+    const double a = std::sqrt(4 * P * R_star / (M_PI * E_star)), c = a * std::sqrt(1 - Q / (mu * P));
+    double outer_stick = 0, inner_slip = 1e9;
+    for (int i = 0; i < pair.slave().n_nodes(); ++i) {
+      const double x = std::abs(pair.slave().reference_position[i][0]);
+      if (pair.state(i) == contact::NodeState::Stick) outer_stick = std::max(outer_stick, x);
+      if (pair.state(i) == contact::NodeState::Slip) inner_slip = std::min(inner_slip, x);
+    }
+    std::printf("step %d: Q / mu P = %.3f, c = %.5f (Mindlin), outermost stick %.5f, innermost slip %.5f\n", step,
+                Q / (mu * P), c, outer_stick, inner_slip);
+    if (step == 1) {
+      EXPECT_LT(std::abs(Q), 1e-3 * mu * P) << "pressing identical bodies makes no shear";
+      EXPECT_EQ(inner_slip, 1e9) << "pressing identical bodies: every contact node sticks";
+      continue;
+    }
+    EXPECT_GT(Q, 0);
+    EXPECT_LT(Q, mu * P);
+    EXPECT_GE(c, outer_stick - 0.02 * a);
+    EXPECT_LE(c, inner_slip + 0.02 * a);
+  }
 }
 
 }  // namespace
