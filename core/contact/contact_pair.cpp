@@ -90,7 +90,12 @@ int ContactPair::update_states(int step, const std::vector<double>& u, const dou
     if (next != state_[i]) ++changes;
     state_[i] = next;
   }
-  settled_ = changes == 0;
+  // Settled: no state changed, and the update moved the multipliers by at most
+  // settle_tolerance relative to them (Newton is then close, where the normals' terms buy
+  // the quadratic rate; far from it they of order p / h disturb Newton and Krylov alike).
+  double step2 = 0, size2 = 0;
+  for (int k = 0; k < slave_.n_nodes() * d; ++k) step2 += dlambda[k] * dlambda[k], size2 += lambda[k] * lambda[k];
+  settled_ = changes == 0 && step2 <= settings_.settle_tolerance * settings_.settle_tolerance * size2;
   return changes;
 }
 
