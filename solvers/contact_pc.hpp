@@ -26,7 +26,7 @@
 //                        s = 1               diagonal            smooth              auto
 //   sliding-block-2d     20.3 / 23.6 / 24.5  20.4 / 24.9 / 29.7  19.2 / 21.5 / 21.3  17.7 / 19.9 / 20.7
 //   hertz-cylinder-2d    45.8 / 57.6 / 70.8  19.4 / 23.2 / 30.6  31.8 / 40.6 / 49.4  18.6 / 21.2 / 24.2
-//   contact-patch-2d     10.7 / 14.7 / 16.3  11.3 / 14.0 / 16.3  10.7 / 14.0 / 15.3  11.0 / 12.3 / 12.7
+//   contact-patch-2d     10.8 / 13.0 / 14.8  11.2 / 13.5 / 16.0  10.8 / 12.2 / 14.0  10.8 / 12.0 / 12.0
 // S~ is solved by its own KSP (<prefix>ss_, a direct solve by default: it lives on the slave
 // surface only).
 //   y = P_A^-1 r_a;  x_lambda = S~^-1 (r_lambda - B2 y);  x_a = P_A^-1 (r_a - B1 x_lambda)
