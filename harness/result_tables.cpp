@@ -8,138 +8,106 @@ namespace stiction::harness {
 
 namespace {
 
-// (key in StepResult::surface_forces, column prefix) of every traction
-// integral.
-std::vector<std::pair<std::string, std::string>>
-traction_columns(const scene::Scene &s) {
+// (key in StepResult::surface_forces, column prefix) of every traction integral.
+std::vector<std::pair<std::string, std::string>> traction_columns(const scene::Scene& s) {
   std::vector<std::pair<std::string, std::string>> out;
-  for (const auto &bc : s.problem.dirichlet)
-    out.emplace_back(bc.name, "traction_" + bc.name);
-  for (const auto *c : s.problem.constraints)
-    for (const auto &[role, tag] : c->surfaces())
-      out.emplace_back(c->name() + "/" + role,
-                       fmt::format("contact_{}_{}_traction", c->name(), role));
+  for (const auto& bc : s.problem.dirichlet) out.emplace_back(bc.name, "traction_" + bc.name);
+  for (const auto* c : s.problem.constraints)
+    for (const auto& [role, tag] : c->surfaces())
+      out.emplace_back(c->name() + "/" + role, fmt::format("contact_{}_{}_traction", c->name(), role));
   return out;
 }
 
-} // namespace
+}  // namespace
 
-StepTable::StepTable(const std::string &path, const std::string &header_comment,
-                     const scene::Scene &s)
-    : out_(path) {
-  if (!out_)
-    throw Error(fmt::format("cannot write '{}'", path));
+StepTable::StepTable(const std::string& path, const std::string& header_comment, const scene::Scene& s) : out_(path) {
+  if (!out_) throw Error(fmt::format("cannot write '{}'", path));
   out_ << header_comment;
-  out_ << "step,converged,reason,newton_iterations,initial_residual,reference_"
-          "residual,final_residual,"
-          "krylov_iterations,assembly_seconds,setup_seconds,solve_seconds,wall_"
-          "seconds";
-  // Forces on each Dirichlet boundary: nodal reactions (the paper's F2), then
-  // the integral of the traction P N on each Dirichlet boundary (F1) and
-  // contact surface (slave: F4, master: -F5).
-  for (const auto &bc : s.problem.dirichlet)
-    for (int k = 0; k < s.mesh.dim; ++k)
-      out_ << fmt::format(",reaction_{}_{}", bc.name, "xyz"[k]);
-  for (const auto &[key, column] : traction_columns(s))
-    for (int k = 0; k < s.mesh.dim; ++k)
-      out_ << fmt::format(",{}_{}", column, "xyz"[k]);
-  // Contact: the integral of lambda over the slave surface (F3), the final
-  // states and how many states changed over the step's Newton iterations.
-  for (const auto *c : s.problem.constraints) {
-    for (int k = 0; k < s.mesh.dim; ++k)
-      out_ << fmt::format(",contact_{}_force_{}", c->name(), "xyz"[k]);
-    out_ << fmt::format(
-        ",contact_{0}_inactive,contact_{0}_stick,contact_{0}_slip", c->name());
+  out_ << "step,converged,reason,newton_iterations,initial_residual,reference_residual,final_residual,"
+          "krylov_iterations,assembly_seconds,setup_seconds,solve_seconds,wall_seconds";
+  // Forces on each Dirichlet boundary: nodal reactions (the paper's F2), then the
+  // integral of the traction P N on each Dirichlet boundary (F1) and contact surface
+  // (slave: F4, master: -F5).
+  for (const auto& bc : s.problem.dirichlet)
+    for (int k = 0; k < s.mesh.dim; ++k) out_ << fmt::format(",reaction_{}_{}", bc.name, "xyz"[k]);
+  for (const auto& [key, column] : traction_columns(s))
+    for (int k = 0; k < s.mesh.dim; ++k) out_ << fmt::format(",{}_{}", column, "xyz"[k]);
+  // Contact: the integral of lambda over the slave surface (F3), the final states and how
+  // many states changed over the step's Newton iterations.
+  for (const auto* c : s.problem.constraints) {
+    for (int k = 0; k < s.mesh.dim; ++k) out_ << fmt::format(",contact_{}_force_{}", c->name(), "xyz"[k]);
+    out_ << fmt::format(",contact_{0}_inactive,contact_{0}_stick,contact_{0}_slip", c->name());
   }
-  if (!s.problem.constraints.empty())
-    out_ << ",state_changes";
+  if (!s.problem.constraints.empty()) out_ << ",state_changes";
   out_ << "\n";
   out_.flush();
 }
 
-void StepTable::add(const nonlinear::StepResult &r, const scene::Scene &s) {
+void StepTable::add(const nonlinear::StepResult& r, const scene::Scene& s) {
   int krylov = 0;
   double assembly = 0, setup = 0, solve = 0;
-  for (const auto &it : r.iterations) {
+  for (const auto& it : r.iterations) {
     krylov += it.linear.iterations;
     assembly += it.assembly_seconds;
     setup += it.linear.setup_seconds;
     solve += it.linear.solve_seconds;
   }
-  out_ << fmt::format(
-      "{},{},{},{},{:.6e},{:.6e},{:.6e},{},{:.4f},{:.4f},{:.4f},{:.4f}", r.step,
-      r.converged() ? 1 : 0, nonlinear::to_string(r.reason),
-      r.iterations.size(), r.initial_residual, r.reference_residual,
-      r.final_residual, krylov, assembly, setup, solve, r.wall_seconds);
-  for (const auto &bc : s.problem.dirichlet) {
+  out_ << fmt::format("{},{},{},{},{:.6e},{:.6e},{:.6e},{},{:.4f},{:.4f},{:.4f},{:.4f}", r.step, r.converged() ? 1 : 0,
+                      nonlinear::to_string(r.reason), r.iterations.size(), r.initial_residual, r.reference_residual,
+                      r.final_residual, krylov, assembly, setup, solve, r.wall_seconds);
+  for (const auto& bc : s.problem.dirichlet) {
     auto it = r.reactions.find(bc.name);
     for (int k = 0; k < s.mesh.dim; ++k)
-      out_ << (it == r.reactions.end()
-                   ? std::string(",")
-                   : fmt::format(",{:.10e}", it->second[k]));
+      out_ << (it == r.reactions.end() ? std::string(",") : fmt::format(",{:.10e}", it->second[k]));
   }
-  for (const auto &[key, column] : traction_columns(s)) {
+  for (const auto& [key, column] : traction_columns(s)) {
     auto it = r.surface_forces.find(key);
     for (int k = 0; k < s.mesh.dim; ++k)
-      out_ << (it == r.surface_forces.end()
-                   ? std::string(",")
-                   : fmt::format(",{:.10e}", it->second[k]));
+      out_ << (it == r.surface_forces.end() ? std::string(",") : fmt::format(",{:.10e}", it->second[k]));
   }
   for (size_t c = 0; c < s.problem.constraints.size(); ++c) {
-    if (c >= r.contact.size()) { // not converged: no contact figures
+    if (c >= r.contact.size()) {  // not converged: no contact figures
       out_ << std::string(static_cast<size_t>(s.mesh.dim) + 3, ',');
       continue;
     }
-    const auto &cs = r.contact[c];
-    for (int k = 0; k < s.mesh.dim; ++k)
-      out_ << fmt::format(",{:.10e}", cs.force[k]);
+    const auto& cs = r.contact[c];
+    for (int k = 0; k < s.mesh.dim; ++k) out_ << fmt::format(",{:.10e}", cs.force[k]);
     out_ << fmt::format(",{},{},{}", cs.inactive, cs.stick, cs.slip);
   }
   if (!s.problem.constraints.empty()) {
     int changes = 0;
-    for (const auto &it : r.iterations)
-      changes += it.state_changes;
+    for (const auto& it : r.iterations) changes += it.state_changes;
     out_ << fmt::format(",{}", changes);
   }
   out_ << "\n";
   out_.flush();
 }
 
-IterationTable::IterationTable(const std::string &path,
-                               const std::string &header_comment, bool contact)
+IterationTable::IterationTable(const std::string& path, const std::string& header_comment, bool contact)
     : out_(path), contact_(contact) {
-  if (!out_)
-    throw Error(fmt::format("cannot write '{}'", path));
+  if (!out_) throw Error(fmt::format("cannot write '{}'", path));
   out_ << header_comment;
-  // residual: the free residual after the update; the linear columns describe
-  // the solve that produced the update.
-  out_ << "step,iteration,residual,step_length,krylov_iterations,linear_reason,"
-          "linear_relative_residual,"
+  // residual: the free residual after the update; the linear columns describe the solve
+  // that produced the update.
+  out_ << "step,iteration,residual,step_length,krylov_iterations,linear_reason,linear_relative_residual,"
           "assembly_seconds,setup_seconds,solve_seconds";
-  if (contact_)
-    out_ << ",constraint_residual,state_changes";
+  if (contact_) out_ << ",constraint_residual,state_changes";
   out_ << "\n";
   out_.flush();
 }
 
-void IterationTable::add(const nonlinear::StepResult &r) {
+void IterationTable::add(const nonlinear::StepResult& r) {
   for (size_t k = 0; k < r.iterations.size(); ++k) {
-    const auto &it = r.iterations[k];
+    const auto& it = r.iterations[k];
     const double relative =
-        it.linear.initial_residual > 0
-            ? it.linear.final_residual / it.linear.initial_residual
-            : 0.0;
-    out_ << fmt::format("{},{},{:.6e},{:g},{},{},{:.3e},{:.4f},{:.4f},{:.4f}",
-                        r.step, k + 1, it.residual, it.step_length,
-                        it.linear.iterations, it.linear.reason, relative,
-                        it.assembly_seconds, it.linear.setup_seconds,
-                        it.linear.solve_seconds);
-    if (contact_)
-      out_ << fmt::format(",{:.6e},{}", it.constraint_residual,
-                          it.state_changes);
+        it.linear.initial_residual > 0 ? it.linear.final_residual / it.linear.initial_residual : 0.0;
+    out_ << fmt::format("{},{},{:.6e},{:g},{},{},{:.3e},{:.4f},{:.4f},{:.4f}", r.step, k + 1, it.residual,
+                        it.step_length, it.linear.iterations, it.linear.reason, relative, it.assembly_seconds,
+                        it.linear.setup_seconds, it.linear.solve_seconds);
+    if (contact_) out_ << fmt::format(",{:.6e},{}", it.constraint_residual, it.state_changes);
     out_ << "\n";
   }
   out_.flush();
 }
 
-} // namespace stiction::harness
+}  // namespace stiction::harness

@@ -18,107 +18,76 @@
 
 namespace stiction::harness {
 
-void run_solve(const SolveOptions &o, const RunInfo &info) {
+void run_solve(const SolveOptions& o, const RunInfo& info) {
   const auto t_start = std::chrono::steady_clock::now();
   auto scene = open_scene(o.scene, o.level);
-  if (!o.forcing.empty())
-    scene->newton.forcing = nonlinear::forcing_from_string(o.forcing);
+  if (!o.forcing.empty()) scene->newton.forcing = nonlinear::forcing_from_string(o.forcing);
   auto solver = solvers::create_solver(o.solver, PETSC_COMM_WORLD);
-  const std::string out_dir =
-      o.out_dir.empty() ? fmt::format("out/{}-L{}", scene->name, scene->level)
-                        : o.out_dir;
+  const std::string out_dir = o.out_dir.empty() ? fmt::format("out/{}-L{}", scene->name, scene->level) : o.out_dir;
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);
-  if (ec)
-    throw Error(fmt::format("cannot create output directory '{}': {}", out_dir,
-                            ec.message()));
+  if (ec) throw Error(fmt::format("cannot create output directory '{}': {}", out_dir, ec.message()));
 
-  const auto &space = *scene->space;
+  const auto& space = *scene->space;
   std::string header = format_run_info(info, "# ");
-  header +=
-      fmt::format("# scene: {} ({}), level {}, basis {}\n", scene->name,
-                  scene->origin, scene->level, fem::to_string(space.kind()));
+  header += fmt::format("# scene: {} ({}), level {}, basis {}\n", scene->name, scene->origin, scene->level,
+                        fem::to_string(space.kind()));
   for (size_t b = 0; b < scene->body_names.size(); ++b)
-    header += fmt::format("# body {}: {}\n", scene->body_names[b],
-                          scene->material_of_body[b]);
-  header += fmt::format(
-      "# mesh: {} vertices, {} cells; unknowns: u_l {}, u_q {}, total {}\n",
-      scene->mesh.n_vertices(), scene->mesh.n_cells(),
-      space.linear_block().second - space.linear_block().first,
-      space.quadratic_block().second - space.quadratic_block().first,
-      space.n_dofs());
-  header += fmt::format("# solver: {}; newton atol {:g}, rtol {:g}, "
-                        "max_iterations {}, forcing {}\n",
-                        o.solver, scene->newton.atol, scene->newton.rtol,
-                        scene->newton.max_iterations,
+    header += fmt::format("# body {}: {}\n", scene->body_names[b], scene->material_of_body[b]);
+  header += fmt::format("# mesh: {} vertices, {} cells; unknowns: u_l {}, u_q {}, total {}\n", scene->mesh.n_vertices(),
+                        scene->mesh.n_cells(), space.linear_block().second - space.linear_block().first,
+                        space.quadratic_block().second - space.quadratic_block().first, space.n_dofs());
+  header += fmt::format("# solver: {}; newton atol {:g}, rtol {:g}, max_iterations {}, forcing {}\n", o.solver,
+                        scene->newton.atol, scene->newton.rtol, scene->newton.max_iterations,
                         nonlinear::to_string(scene->newton.forcing));
-  if (!o.quiet)
-    fmt::print(stderr, "{}", header);
+  if (!o.quiet) fmt::print(stderr, "{}", header);
 
   std::unique_ptr<StepTable> table;
   std::unique_ptr<IterationTable> iteration_table;
   if (scene->output.csv) {
     table = std::make_unique<StepTable>(out_dir + "/steps.csv", header, *scene);
     iteration_table =
-        std::make_unique<IterationTable>(out_dir + "/iterations.csv", header,
-                                         !scene->problem.constraints.empty());
+        std::make_unique<IterationTable>(out_dir + "/iterations.csv", header, !scene->problem.constraints.empty());
   }
   PvdCollection pvd(out_dir + "/solution.pvd");
-  nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, scene->problem,
-                                      scene->newton, *solver);
+  nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, scene->problem, scene->newton, *solver);
   if (!o.record_dir.empty()) {
     const RecordContext context{scene->name, scene->level, o.solver, info};
-    newton.set_system_observer(
-        [&, context](const nonlinear::NewtonSystem &sys, Vec du,
-                     const nonlinear::LinearSolveStats &stats, int step,
-                     int iteration) {
-          record_system(o.record_dir, sys, du, stats, step, iteration, context);
-        });
+    newton.set_system_observer([&, context](const nonlinear::NewtonSystem& sys, Vec du,
+                                            const nonlinear::LinearSolveStats& stats, int step, int iteration) {
+      record_system(o.record_dir, sys, du, stats, step, iteration, context);
+    });
   }
-  auto results = newton.run([&](const nonlinear::StepResult &r) {
-    if (table)
-      table->add(r, *scene);
-    if (iteration_table)
-      iteration_table->add(r);
+  auto results = newton.run([&](const nonlinear::StepResult& r) {
+    if (table) table->add(r, *scene);
+    if (iteration_table) iteration_table->add(r);
     if (scene->output.vtu && o.write_vtu && r.converged()) {
       const std::string name = fmt::format("step-{:03d}.vtu", r.step);
       write_vtu(out_dir + "/" + name, *scene, newton.displacement());
       pvd.add(r.step, name);
     }
     if (!o.quiet)
-      fmt::print(stderr,
-                 "step {}/{}: {} after {} Newton iterations, residual {:.3e} "
-                 "(reference {:.3e}), {:.2f} s\n",
-                 r.step, scene->problem.n_steps, nonlinear::to_string(r.reason),
-                 r.iterations.size(), r.final_residual, r.reference_residual,
-                 r.wall_seconds);
+      fmt::print(stderr, "step {}/{}: {} after {} Newton iterations, residual {:.3e} (reference {:.3e}), {:.2f} s\n",
+                 r.step, scene->problem.n_steps, nonlinear::to_string(r.reason), r.iterations.size(),
+                 r.final_residual, r.reference_residual, r.wall_seconds);
   });
   {
     std::ofstream desc(out_dir + "/solver.txt");
     desc << solver->describe();
   }
-  const auto &last = results.back();
+  const auto& last = results.back();
   if (!o.metrics_path.empty()) {
-    RunSummary summary{o.solver,
-                       solvers::default_options(o.solver) + o.petsc_options,
-                       std::chrono::duration<double>(
-                           std::chrono::steady_clock::now() - t_start)
-                           .count(),
-                       last.converged(),
-                       last.converged() ? "CONVERGED"
-                                        : nonlinear::to_string(last.reason),
+    RunSummary summary{o.solver, solvers::default_options(o.solver) + o.petsc_options,
+                       std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count(),
+                       last.converged(), last.converged() ? "CONVERGED" : nonlinear::to_string(last.reason),
                        last.detail};
     write_metrics(o.metrics_path, *scene, summary, results);
   }
   if (!last.converged())
-    throw Error(
-        fmt::format(
-            "Newton did not converge at load step {} of scene '{}': {}{}{}",
-            last.step, scene->name, nonlinear::to_string(last.reason),
-            last.detail.empty() ? "" : ": ", last.detail),
-        ErrorKind::Numerical);
-  if (!o.quiet)
-    fmt::print(stderr, "results in {}\n", out_dir);
+    throw Error(fmt::format("Newton did not converge at load step {} of scene '{}': {}{}{}", last.step, scene->name,
+                            nonlinear::to_string(last.reason), last.detail.empty() ? "" : ": ", last.detail),
+                ErrorKind::Numerical);
+  if (!o.quiet) fmt::print(stderr, "results in {}\n", out_dir);
 }
 
-} // namespace stiction::harness
+}  // namespace stiction::harness

@@ -108,9 +108,10 @@ int ContactPair::update_states(int step, const std::vector<double>& u, const dou
 // zone ends within the overlap of the undeformed bodies (overlap b^2 = 2 R delta for an
 // approach delta): in 3D a^2 = R delta, so f = 1 - a^2/b^2 = 1/2; in plane strain
 // a^2 = 4 R delta / (2 ln(4R/a) - 1), so f = 1 - 2 / (2 ln(4R/a) - 1), 0.76 at a = R/25
-// (our Hertz scenes' load; smaller a gives larger f).
-// Measured, lu-mumps, Newton iterations per load step at levels 0 / 1 / 2, every penetrated
-// node entering -> this rule:
+// (our Hertz scenes' load; smaller a gives larger f): 0.75 is used.
+// Measured when the rule came in (before the blended contact point of surface_contact.cpp,
+// self-contact-2d still in four load steps), lu-mumps, Newton iterations per load step at
+// levels 0 / 1 / 2, every penetrated node entering -> this rule:
 //   hertz-cylinder-2d   7+3 / 9+5 / 10+8    ->  1+3 / 1+3 / 1+3
 //   hertz-cylinders-2d  9+5 / 12+7 / 14+10  ->  5+6 / 7+6 / 6+8
 //   hertz-sphere-3d     4+3 / 6+5 (levels 0 / 1)  ->  1+3 / 2+4

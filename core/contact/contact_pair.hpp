@@ -29,8 +29,9 @@ struct ContactSettings {
   //   Dropped  never, as the paper (Sec. 4.3, term (1) of (23)): a quasi-Newton step;
   //   Settled  linearised once an update changed no contact state and moved the multipliers
   //            by at most settle_tolerance relative to them (default, choice).
-  // Measured with schur-amg, Newton iterations per load step and Krylov iterations per
-  // linear solve at levels 0 / 1 / 2:
+  // Measured with `stiction solve <scene> --level L --solver schur-amg` (the scene's
+  // normal_linearisation key set; the other tolerances by a rebuild), Newton iterations per
+  // load step and Krylov iterations per linear solve at levels 0 / 1 / 2:
   //   hertz-cylinders-2d   Dropped                 7+8 / 7+9 / 9+10,   8.4 /  9.0 /  9.4
   //                        Settled, tolerance inf  5+6 / 7+6 / 8+6,    14.3 / 17.8 / 22.4
   //                        Settled, 0.1            5+6 / 5+6 / 6+8,    11.4 / 13.8 / 18.9

@@ -283,8 +283,8 @@ std::vector<Branch> contact_point(const FacetEvaluator& ev, const Facet& f, cons
 
 // One slave quadrature point at parameter xi of facet f and its contact point: the gap
 // vector r = x1 - y, the motions since the previous step (15)-(16), and per branch the
-// master's motion and its rate along eta. `branches` is empty when the point has no
-// contact point.
+// master's motion and (with derivatives) its rate along eta. `branches` is empty when the
+// point has no contact point.
 struct PointKinematics {
   FacetPoint s;
   std::vector<Branch> branches;
@@ -302,7 +302,8 @@ PointKinematics point_kinematics(const FacetEvaluator& ev, const Facet& f, doubl
   Vec2 y = Vec2::Zero();
   for (const Branch& b : p.branches) {
     p.branch_motion.push_back(ev.combine(*b.facet, b.p.y.N, u) - ev.combine(*b.facet, b.p.y.N, u_previous));
-    p.branch_rate.push_back(ev.combine(*b.facet, b.p.y.dN, u) - ev.combine(*b.facet, b.p.y.dN, u_previous));
+    if (with_derivatives)
+      p.branch_rate.push_back(ev.combine(*b.facet, b.p.y.dN, u) - ev.combine(*b.facet, b.p.y.dN, u_previous));
     y += b.weight * b.p.y.x;
     p.master_motion += b.weight * p.branch_motion.back();
   }

@@ -131,6 +131,19 @@ void random_state(ContactPair& pair, int n_u, double amplitude, int normal_axis,
   }
 }
 
+// 1 for every displacement node of the given body (index in the scene's bodies), else 0.
+std::vector<char> nodes_of_body(const scene::Scene& s, int body) {
+  const fem::FieldSpace& space = *s.space;
+  std::vector<char> in_body(space.n_nodes(), 0);
+  std::vector<int> nodes(space.nodes_per_cell());
+  for (int c = 0; c < s.mesh.n_cells(); ++c) {
+    if (s.body_of_cell[c] != body) continue;
+    space.cell_nodes(c, nodes.data());
+    for (int n : nodes) in_body[n] = 1;
+  }
+  return in_body;
+}
+
 // Every entry of the contact blocks against central differences of (r_u, r_c), with a mix
 // of inactive, sticking and slipping nodes and a tilted, moving plane.
 TEST(RigidPlaneContact, JacobianMatchesFiniteDifferences) {
@@ -154,13 +167,7 @@ TEST(SurfaceContact, JacobianMatchesFiniteDifferences) {
   std::vector<double> u0, u, lambda;
   random_state(pair, space.n_dofs(), 0.01, 1, u0, u, lambda);
   // Base nodes (body 0) follow affine maps, at both the previous and the current state.
-  std::vector<char> in_block(space.n_nodes(), 0);
-  std::vector<int> nodes(space.nodes_per_cell());
-  for (int c = 0; c < s->mesh.n_cells(); ++c) {
-    if (s->body_of_cell[c] != 1) continue;
-    space.cell_nodes(c, nodes.data());
-    for (int n : nodes) in_block[n] = 1;
-  }
+  const std::vector<char> in_block = nodes_of_body(*s, 1);
   auto affine = [](double a, double b, double c, double d, double e, double f) {
     return [=](const double* X, double* out) { out[0] = a * X[0] + b * X[1] + e, out[1] = c * X[0] + d * X[1] + f; };
   };
@@ -228,13 +235,7 @@ TEST(SurfaceContact, JacobianMatchesFiniteDifferencesWhereTheSlavePenetratesAKin
   auto& pair = dynamic_cast<SurfaceContact&>(*s->contacts.at(0));
   const fem::FieldSpace& space = *s->space;
   const int n_u = space.n_dofs(), n_l = pair.n_multipliers();
-  std::vector<char> lower(space.n_nodes(), 0);
-  std::vector<int> nodes(space.nodes_per_cell());
-  for (int c = 0; c < s->mesh.n_cells(); ++c) {
-    if (s->body_of_cell[c] != 1) continue;
-    space.cell_nodes(c, nodes.data());
-    for (int node : nodes) lower[node] = 1;
-  }
+  const std::vector<char> lower = nodes_of_body(*s, 1);
   // The lower cylinder rises by 0.006 and bends; the upper one bends and shears.
   std::vector<double> u_lower, u_upper, u(n_u), u0(n_u);
   space.interpolate([](const double* X, double* out) { out[0] = 1e-3 * X[1], out[1] = 0.006 + 0.01 * X[0] * X[0]; },
