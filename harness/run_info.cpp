@@ -41,6 +41,9 @@ std::string env_or(const char* name, const char* fallback) {
 
 RunInfo collect_run_info(int argc, char** argv) {
   RunInfo i;
+  // Options from the environment change every backend's behaviour: part of the command.
+  if (const char* env = std::getenv("PETSC_OPTIONS"); env && *env)
+    i.command_line = fmt::format("PETSC_OPTIONS='{}' ", env);
   for (int k = 0; k < argc; ++k) i.command_line += (k ? " " : "") + std::string(argv[k]);
   const std::string src = STICTION_SOURCE_DIR;
   i.git_revision = run("git -C '" + src + "' rev-parse --short=12 HEAD 2>/dev/null");

@@ -33,6 +33,32 @@ double ContactPreconditioner::scale_from_options(Mat M, Mat mass) {
   return number;
 }
 
+ContactPreconditioner::Factorisation ContactPreconditioner::factorisation_from_options() const {
+  char value[16] = "full";
+  PetscBool set;
+  STICTION_PETSC(PetscOptionsGetString(nullptr, prefix_.c_str(), "-contact_fact", value, sizeof value, &set));
+  const std::string v = value;
+  if (v == "full") return Factorisation::Full;
+  if (v == "upper") return Factorisation::Upper;
+  if (v == "lower") return Factorisation::Lower;
+  throw Error(fmt::format("-{}contact_fact: '{}' is none of full, upper or lower", prefix_, v));
+}
+
+PetscMat ContactPreconditioner::fractional_from_options(Mat mass, Mat stiffness) {
+  fit_ = {};
+  char value[16] = "fractional";
+  PetscBool set;
+  STICTION_PETSC(PetscOptionsGetString(nullptr, prefix_.c_str(), "-contact_schur", value, sizeof value, &set));
+  const std::string v = value;
+  if (v == "mass") return {};
+  if (v != "fractional") throw Error(fmt::format("-{}contact_schur: '{}' is neither mass nor fractional", prefix_, v));
+  PetscInt max_rows = 1500, dim;
+  STICTION_PETSC(PetscOptionsGetInt(nullptr, prefix_.c_str(), "-contact_fractional_max_rows", &max_rows, &set));
+  STICTION_PETSC(ISGetBlockSize(is_l_, &dim));
+  return fractional_compliance(mass, stiffness, static_cast<int>(dim), estimates_.diagonal, estimates_.smooth,
+                               static_cast<int>(max_rows), fit_);
+}
+
 double ContactPreconditioner::diagonal_compliance(Mat M, Mat mass) const {
   // s = sum diag(B2 diag(A)^-1 (-B1)) / sum diag(Pi M Pi), over rows where the mass is nonzero.
   PetscVec dA, dA_inv;
@@ -122,7 +148,8 @@ double ContactPreconditioner::smooth_mode_compliance(Mat M, Mat mass) const {
   return denominator > 0 && -numerator > 0 ? -numerator / denominator : 0.0;
 }
 
-void ContactPreconditioner::setup(Mat M, IS multipliers, Mat schur_mass, const ShellPreconditioner& inner) {
+void ContactPreconditioner::setup(Mat M, IS multipliers, Mat schur_mass, Mat schur_stiffness,
+                                  const ShellPreconditioner& inner) {
   if (!schur_mass) throw Error("contact preconditioner: the system has no multiplier mass", ErrorKind::Internal);
   inner_ = &inner;
   PetscInt first;
@@ -135,8 +162,18 @@ void ContactPreconditioner::setup(Mat M, IS multipliers, Mat schur_mass, const S
   STICTION_PETSC(MatCreateSubMatrix(M, is_l_, is_a_, MAT_INITIAL_MATRIX, B2_.out()));
   STICTION_PETSC(MatCreateSubMatrix(M, is_l_, is_l_, MAT_INITIAL_MATRIX, D_.out()));
   scale_ = scale_from_options(M, schur_mass);
+  factorisation_ = factorisation_from_options();
   STICTION_PETSC(MatDuplicate(D_, MAT_COPY_VALUES, S_.out()));
-  STICTION_PETSC(MatAXPY(S_, scale_, schur_mass, DIFFERENT_NONZERO_PATTERN));
+  if (PetscMat G = fractional_from_options(schur_mass, schur_stiffness); G)
+    STICTION_PETSC(MatAXPY(S_, 1.0, G, DIFFERENT_NONZERO_PATTERN));
+  else
+    STICTION_PETSC(MatAXPY(S_, scale_, schur_mass, DIFFERENT_NONZERO_PATTERN));
+  // PETSc 3.18's LU with inodes and a fill-reducing ordering (nd, rcm) met a zero pivot and
+  // NaNs on the fractional model's dense block of a symmetric positive definite S~
+  // (sliding-block-2d, level 0): without inodes, or in natural order, it factors.
+  STICTION_PETSC(MatSetOption(S_, MAT_USE_INODES, PETSC_FALSE));
+  STICTION_PETSC(MatAssemblyBegin(S_, MAT_FINAL_ASSEMBLY));  // drops the inodes found before
+  STICTION_PETSC(MatAssemblyEnd(S_, MAT_FINAL_ASSEMBLY));
   STICTION_PETSC(KSPSetOperators(ksp_ss_, S_, S_));
   STICTION_PETSC(KSPSetFromOptions(ksp_ss_));
   STICTION_PETSC(KSPSetUp(ksp_ss_));
@@ -156,20 +193,33 @@ Mat ContactPreconditioner::block(int row, int col) const {
 }
 
 void ContactPreconditioner::apply(Vec r, Vec x) const {
-  // y = P_A^-1 r_a (in work_'s a part)
-  STICTION_PETSC(VecZeroEntries(work_));
-  inner_->apply(r, work_);
+  // full / lower: y = P_A^-1 r_a (the a part of x for lower); upper skips it (B2 y dropped).
   Vec y_a, r_l, x_l;
-  STICTION_PETSC(VecGetSubVector(work_, is_a_, &y_a));
-  STICTION_PETSC(MatMult(B2_, y_a, work_l_));
-  STICTION_PETSC(VecRestoreSubVector(work_, is_a_, &y_a));
+  if (factorisation_ != Factorisation::Upper) {
+    STICTION_PETSC(VecZeroEntries(work_));
+    inner_->apply(r, work_);
+    STICTION_PETSC(VecGetSubVector(work_, is_a_, &y_a));
+    STICTION_PETSC(MatMult(B2_, y_a, work_l_));
+    STICTION_PETSC(VecRestoreSubVector(work_, is_a_, &y_a));
+  } else {
+    STICTION_PETSC(VecZeroEntries(work_l_));
+  }
   STICTION_PETSC(VecGetSubVector(r, is_l_, &r_l));
   STICTION_PETSC(VecAYPX(work_l_, -1.0, r_l));  // r_lambda - B2 y
   STICTION_PETSC(VecRestoreSubVector(r, is_l_, &r_l));
   STICTION_PETSC(VecGetSubVector(x, is_l_, &x_l));
   STICTION_PETSC(KSPSolve(ksp_ss_, work_l_, x_l));  // x_lambda = S~^-1 (...)
-  STICTION_PETSC(MatMult(B1_, x_l, work_a_));
+  if (factorisation_ != Factorisation::Lower) STICTION_PETSC(MatMult(B1_, x_l, work_a_));
   STICTION_PETSC(VecRestoreSubVector(x, is_l_, &x_l));
+  if (factorisation_ == Factorisation::Lower) {
+    Vec x_a;
+    STICTION_PETSC(VecGetSubVector(work_, is_a_, &y_a));
+    STICTION_PETSC(VecGetSubVector(x, is_a_, &x_a));
+    STICTION_PETSC(VecCopy(y_a, x_a));
+    STICTION_PETSC(VecRestoreSubVector(x, is_a_, &x_a));
+    STICTION_PETSC(VecRestoreSubVector(work_, is_a_, &y_a));
+    return;
+  }
   // x_a = P_A^-1 (r_a - B1 x_lambda)
   STICTION_PETSC(VecCopy(r, work2_));
   Vec w_a;

@@ -3,36 +3,54 @@
 //
 //   M = [A  B1; B2  D] = [A  -B^T; C_u  C_lambda],   S_g = D - B2 A^-1 B1,
 //
-// in the full four-factor form (8) with A^-1 replaced by the inner preconditioner (HP (10),
-// or MHP (11) with a pressure block) and S_g by the approximation (32):
+// by default in the full four-factor form (8) with A^-1 replaced by the inner preconditioner
+// (HP (10), or MHP (11) with a pressure block) and S_g by
 //
-//   S~ = D + s Pi M_lambda Pi
+//   S~ = D + G,
 //
-// D is exact on inactive nodes (identity), on slipping nodes' tangential rows (I_t, the
-// elongation E^C and the angular term); Pi M_lambda Pi stands for B A^-1 B^T on the
-// constrained directions (all of a sticking node, the normal of a slipping one): the Schur
-// complement is the inverse of a Steklov-Poincare operator, spectrally close to a scaled
-// multiplier mass. The paper gives no scale; s has the units of a compliance, and the
-// Schur complement's compliance spans a range: from the local stiffness of one surface
-// element (~ h / E) up to the whole body's (~ L / E). Two estimates bracket it:
+// D exact on inactive nodes (identity), on slipping nodes' tangential rows (I_t, the
+// elongation E^C and the angular term); G stands for B A^-1 B^T on the constrained
+// directions (all of a sticking node, the normal of a slipping one), where the Schur
+// complement is the inverse of a Steklov-Poincare operator. -<prefix>contact_schur picks G:
+//
+//   fractional (default): the order -1 model of fractional_schur.hpp, calibrated by the two
+//              compliance estimates below; falls back to `mass` (auto scale) when the
+//              estimates do not bracket (smooth <= diagonal) or the zone exceeds
+//              -<prefix>contact_fractional_max_rows (1500) directions;
+//   mass:      the paper's (32), G = s Pi M_lambda Pi.
+//
+// The paper gives no scale for (32); s has the units of a compliance, and the Schur
+// complement's compliance spans a range: from the local stiffness of one surface element
+// (~ h / E) up to the whole body's (~ L / E). Two estimates bracket it:
 //   diagonal  s_d = sum_i (B2 diag(A)^-1 (-B1))_ii / sum_i (Pi M Pi)_ii over constrained rows
 //             (the element end);
 //   smooth    s_s = w^T B2 P_A^-1 (-B1) w / w^T (Pi M Pi) w, w ~ Pi 1 the smoothest
 //             constrained field, P_A^-1 the inner preconditioner (the body end);
-// and -<prefix>contact_scale picks: auto (default) sqrt(s_d s_s), the geometric mean, which
+// and -<prefix>contact_scale picks s: auto (default) sqrt(s_d s_s), the geometric mean, which
 // keeps the worst ratio of S~ to S_g over that range smallest; diagonal; smooth; or <x>
-// (1 is the unscaled (32)). Measured, schur-amg Krylov iterations per linear solve at levels
-// 0 / 1 / 2 (reports/contact-schur-scale/, every contact scene there):
+// (1 is the unscaled (32)). Measured with `mass`, schur-amg Krylov iterations per linear
+// solve at levels 0 / 1 / 2 (reports/contact-schur-scale/, every contact scene there):
 //                        s = 1               diagonal            smooth              auto
 //   sliding-block-2d     20.3 / 23.6 / 24.5  20.4 / 24.9 / 29.7  19.2 / 21.5 / 21.3  17.7 / 19.9 / 20.7
 //   hertz-cylinder-2d    45.8 / 57.6 / 70.8  19.4 / 23.2 / 30.6  31.8 / 40.6 / 49.4  18.6 / 21.2 / 24.2
-//   contact-patch-2d     10.8 / 13.0 / 14.8  11.2 / 13.5 / 16.0  10.8 / 12.2 / 14.0  10.8 / 12.0 / 12.0
+//   contact-patch-2d     10.8 / 13.0 / 14.8  11.2 / 13.5 / 16.0  10.8 / 12.0 / 12.0  10.8 / 12.0 / 12.0
+// A scalar s cannot follow a compliance that falls with the load's wave number: the
+// fractional G can, and its counts stay flat under refinement (hertz-cylinder-2d 15.0 / 15.2
+// / 15.4; reports/contact-levels-0-2/).
+//
+// -<prefix>contact_fact picks the factorisation (PETSc's names for fieldsplit's):
+//   full (default, the paper's (8)):
+//     y = P_A^-1 r_a;  x_lambda = S~^-1 (r_lambda - B2 y);  x_a = P_A^-1 (r_a - B1 x_lambda)
+//   upper: x_lambda = S~^-1 r_lambda;  x_a = P_A^-1 (r_a - B1 x_lambda)
+//   lower: x_a = P_A^-1 r_a;  x_lambda = S~^-1 (r_lambda - B2 x_a)
+// upper and lower apply P_A^-1 once per iteration instead of twice: more iterations, each
+// cheaper (measured in reports/contact-levels-0-2/).
 // S~ is solved by its own KSP (<prefix>ss_, a direct solve by default: it lives on the slave
-// surface only).
-//   y = P_A^-1 r_a;  x_lambda = S~^-1 (r_lambda - B2 y);  x_a = P_A^-1 (r_a - B1 x_lambda)
-// With exact inner solves and S~ = S_g this is the exact inverse (tests/backends).
+// surface only). With exact inner solves and S~ = S_g the full form is the exact inverse
+// (tests/backends).
 #include <string>
 
+#include "fractional_schur.hpp"
 #include "hierarchical_pc.hpp"
 
 namespace stiction::solvers {
@@ -43,7 +61,8 @@ public:
 
   // M: the whole contact system; inner must already be set up on it (it reads and writes
   // only the non-multiplier blocks of full-length vectors).
-  void setup(Mat M, IS multipliers, Mat schur_mass, const ShellPreconditioner& inner);
+  // schur_stiffness (Pi K Pi) is read by the fractional model only; it may be null.
+  void setup(Mat M, IS multipliers, Mat schur_mass, Mat schur_stiffness, const ShellPreconditioner& inner);
   void apply(Vec r, Vec x) const override;
 
   // Replaces S~ (e.g. the exact S_g in tests); after setup().
@@ -54,10 +73,18 @@ public:
     double diagonal = 0, smooth = 0;
   };
   ScaleEstimates scale_estimates() const { return estimates_; }
+  // The fractional model's fit at the last setup(); fitted is false with the scaled mass.
+  const FractionalFit& fractional_fit() const { return fit_; }
   KSP schur_solver() const { return ksp_ss_; }
+  Mat schur_approximation() const { return S_; }  // S~ of the last setup()
   Mat block(int row, int col) const;  // 0 = a (u, p), 1 = lambda
 
+  enum class Factorisation { Full, Upper, Lower };
+
 private:
+  Factorisation factorisation_from_options() const;
+  // G of the fractional model, or an empty handle for the scaled mass (32).
+  PetscMat fractional_from_options(Mat mass, Mat stiffness);
   double scale_from_options(Mat M, Mat mass);
   double diagonal_compliance(Mat M, Mat mass) const;
   double smooth_mode_compliance(Mat M, Mat mass) const;  // 0 when the probe gives no positive value
@@ -69,6 +96,8 @@ private:
   PetscMat B1_, B2_, D_, S_;
   PetscVec work_, work2_, work_l_, work_a_;
   double scale_ = 1;
+  Factorisation factorisation_ = Factorisation::Full;
+  FractionalFit fit_;
   ScaleEstimates estimates_;
 };
 

@@ -28,10 +28,11 @@ void SchurSolver::configure(const nonlinear::NewtonSystem& system) {
   }
   if (const auto* lambda = system.field("lambda")) {
     if (!contact_) contact_ = std::make_unique<ContactPreconditioner>(system.comm, options_prefix(this->name()));
-    contact_->setup(system.matrix, lambda->is, system.multiplier_schur_mass, *inner);
+    contact_->setup(system.matrix, lambda->is, system.multiplier_schur_mass, system.multiplier_schur_stiffness,
+                    *inner);
     inner = contact_.get();
-    name = "global Schur level (33): four factors with " + std::string(pressure ? "MHP (11)" : "HP (10)") +
-           " for A^-1 and S~ = D + s Pi M_lambda Pi (32) by the ss_ solver";
+    name = "global Schur level (33) (factors: contact_fact) with " + std::string(pressure ? "MHP (11)" : "HP (10)") +
+           " for A^-1 and S~ = D + G (G: contact_schur, fractional or the mass (32)) by the ss_ solver";
   }
   use_as_shell(pc, *inner, name.c_str());
 }
@@ -44,6 +45,13 @@ void SchurSolver::collect_setup_figures(std::map<std::string, double>& extra) co
     extra["contact_schur_scale"] = contact_->scale();
     extra["contact_scale_diagonal"] = contact_->scale_estimates().diagonal;
     extra["contact_scale_smooth"] = contact_->scale_estimates().smooth;
+    const FractionalFit& fit = contact_->fractional_fit();
+    extra["contact_schur_fractional"] = fit.fitted ? 1 : 0;  // 0: the scaled mass (32)
+    if (fit.fitted) {
+      extra["contact_fractional_beta"] = fit.beta;
+      extra["contact_fractional_mu_max"] = fit.mu_max;
+      extra["contact_fractional_rows"] = fit.rows;
+    }
   }
 }
 

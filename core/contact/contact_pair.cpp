@@ -142,20 +142,30 @@ std::vector<char> ContactPair::states() const {
   return s;
 }
 
-void ContactPair::schur_mass(nonlinear::SparseEntries& out, PetscInt offset) const {
+void ContactPair::add_projected(const std::vector<int>& rows, const std::vector<int>& cols,
+                                const std::vector<double>& values, nonlinear::SparseEntries& out,
+                                PetscInt offset) const {
   const int d = dim_;
   // Pi_i: the identity at a sticking node, n_i n_i^T at a slipping node.
   auto projector = [&](int i) -> Mat3 {
     return state_[i] == NodeState::Stick ? Mat3::Identity() : Mat3(normals_[i] * normals_[i].transpose());
   };
-  for (size_t k = 0; k < slave_.mass_v.size(); ++k) {
-    const int i = slave_.mass_i[k], j = slave_.mass_j[k];
+  for (size_t k = 0; k < values.size(); ++k) {
+    const int i = rows[k], j = cols[k];
     if (state_[i] == NodeState::Inactive || state_[j] == NodeState::Inactive) continue;
     const Mat3 P = projector(i) * projector(j);
     for (int c = 0; c < d; ++c)
       for (int e = 0; e < d; ++e)
-        if (P(c, e) != 0) out.add(offset + i * d + c, offset + j * d + e, slave_.mass_v[k] * P(c, e));
+        if (P(c, e) != 0) out.add(offset + i * d + c, offset + j * d + e, values[k] * P(c, e));
   }
+}
+
+void ContactPair::schur_mass(nonlinear::SparseEntries& out, PetscInt offset) const {
+  add_projected(slave_.mass_i, slave_.mass_j, slave_.mass_v, out, offset);
+}
+
+void ContactPair::schur_stiffness(nonlinear::SparseEntries& out, PetscInt offset) const {
+  add_projected(slave_.stiffness_i, slave_.stiffness_j, slave_.stiffness_v, out, offset);
 }
 
 nonlinear::ConstraintSummary ContactPair::summary(const double* lambda) const {

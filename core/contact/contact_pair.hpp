@@ -69,6 +69,7 @@ public:
   int update_states(int step, const std::vector<double>& u, const double* lambda, const double* dlambda) override;
   std::vector<char> states() const override;
   void schur_mass(nonlinear::SparseEntries& out, PetscInt offset) const override;
+  void schur_stiffness(nonlinear::SparseEntries& out, PetscInt offset) const override;
   nonlinear::ConstraintSummary summary(const double* lambda) const override;
   std::vector<std::pair<std::string, int>> surfaces() const override { return {{"slave", slave_tag_}}; }
 
@@ -99,13 +100,16 @@ private:
   // The mean penetration depth an inactive node must exceed to enter contact at this update:
   // a fraction of the deepest penetrated inactive node's.
   double entry_depth(const std::vector<NodeKinematics>& nodes) const;
+  // Pi X Pi of a slave-surface matrix X given as (row, column, value) entries.
+  void add_projected(const std::vector<int>& rows, const std::vector<int>& cols, const std::vector<double>& values,
+                     nonlinear::SparseEntries& out, PetscInt offset) const;
 
   std::string name_;
   StateTolerances tolerances_;
   std::vector<NodeState> state_;
   std::vector<double> r_t_;
   std::vector<Vec3> last_dlambda_t_;
-  // Normals at the last iterate evaluated with its Jacobian (for schur_mass, which the
+  // Normals at the last iterate evaluated with its Jacobian (for schur_mass and schur_stiffness, which the
   // Newton driver calls right after assembling that Jacobian) or updated on.
   mutable std::vector<Vec3> normals_;
   bool settled_ = false;  // the last state update changed no state

@@ -16,6 +16,26 @@ double SlaveSurface::local_size(int i) const {
   return dim == 2 ? lumped_mass[i] : std::sqrt(lumped_mass[i]);
 }
 
+namespace {
+
+// K of one flat P1 facet with edge vectors E (d x (d-1)): the hats' surface gradients are
+// E (E^T E)^-1 e_j for the vertices 1..d-1 and minus their sum for vertex 0.
+void add_surface_stiffness(const Eigen::MatrixXd& E, double measure, const int* mult, SlaveSurface& s) {
+  const int d = static_cast<int>(E.rows()), sd = static_cast<int>(E.cols());
+  Eigen::MatrixXd grads(d, d);
+  grads.rightCols(sd) = E * (E.transpose() * E).inverse();
+  grads.col(0) = -grads.rightCols(sd).rowwise().sum();
+  const Eigen::MatrixXd K = measure * grads.transpose() * grads;
+  for (int k = 0; k < d; ++k)
+    for (int l = 0; l < d; ++l) {
+      s.stiffness_i.push_back(mult[k]);
+      s.stiffness_j.push_back(mult[l]);
+      s.stiffness_v.push_back(K(k, l));
+    }
+}
+
+}  // namespace
+
 SlaveSurface make_slave_surface(const fem::FieldSpace& space, int facet_tag, const std::string& name) {
   const mesh::Mesh& mesh = space.mesh();
   const int d = space.dim(), sd = d - 1, npf = space.nodes_per_facet();
@@ -55,13 +75,13 @@ SlaveSurface make_slave_surface(const fem::FieldSpace& space, int facet_tag, con
       for (int i = 0; i < d; ++i) E(i, j) = mesh.vertex(v[j + 1])[i] - X0[i];
     const double measure = std::sqrt((E.transpose() * E).determinant());
     int mult[3];
-    for (int k = 0; k < d; ++k) {
-      mult[k] = node_of_vertex.at(v[k]);
+    for (int k = 0; k < d; ++k) mult[k] = node_of_vertex.at(v[k]);
+    add_surface_stiffness(E, measure, mult, s);
+    for (int k = 0; k < d; ++k)
       for (int i = 0; i < d; ++i) {
         lo[i] = std::min(lo[i], mesh.vertex(v[k])[i]);
         hi[i] = std::max(hi[i], mesh.vertex(v[k])[i]);
       }
-    }
     for (int q = 0; q < rule.size(); ++q) {
       const double* xi = rule.point(q);
       fem::eval_shape(sd, space.kind(), xi, N.data(), dN.data());

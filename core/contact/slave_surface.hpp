@@ -7,6 +7,8 @@
 //   B_int[i, a] = int phi_i N_a      (P1 multiplier hat phi_i, displacement shape N_a)
 //   m_i         = int phi_i          (lumped multiplier mass)
 //   M[i, j]     = int phi_i phi_j    (consistent multiplier mass, for the Schur level (32))
+//   K[i, j]     = int grad_s phi_i . grad_s phi_j  (surface Laplacian, for the fractional
+//                 Schur model of the contact preconditioner)
 //
 // Choice (the paper integrates over the current surface without saying so): integrating over
 // the reference slave surface makes the weighted gaps exact linear functions of the slave
@@ -29,6 +31,9 @@ struct SlaveSurface {
   // Consistent mass M (symmetric) as (i, j, value) entries, duplicates summed by the user.
   std::vector<int> mass_i, mass_j;
   std::vector<double> mass_v;
+  // Surface stiffness K (symmetric), entries as for M.
+  std::vector<int> stiffness_i, stiffness_j;
+  std::vector<double> stiffness_v;
   // First moments int phi_i X (dim entries per node): reference positions weighted like gaps.
   std::vector<double> first_moment;
   double diameter = 0;  // bounding-box diagonal of the slave surface

@@ -62,6 +62,9 @@ public:
   // constrained directions (all of them at sticking nodes, the normal at slipping nodes,
   // none at inactive nodes). Multiplier k is row/column `offset + k`.
   virtual void schur_mass(SparseEntries& out, PetscInt offset) const = 0;
+  // The same projection of the surface Laplacian, Pi K Pi (K = int grad_s phi_i . grad_s
+  // phi_j): with Pi M Pi it spans the fractional Schur model of the contact preconditioner.
+  virtual void schur_stiffness(SparseEntries& out, PetscInt offset) const = 0;
   virtual ConstraintSummary summary(const double* lambda) const = 0;
   // The boundary facets the constraint acts on, by role ("slave", "master"), for the
   // traction integrals the Newton driver reports per load step (paper's F4, F5).

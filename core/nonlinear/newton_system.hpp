@@ -30,6 +30,7 @@ struct NewtonSystem {
   // Contact systems only: the mass-matrix part Pi M_lambda Pi of the Schur approximation
   // (32) on the lambda block's numbering (see MultiplierConstraint::schur_mass).
   PetscMat multiplier_schur_mass;
+  PetscMat multiplier_schur_stiffness;  // Pi K Pi likewise (MultiplierConstraint::schur_stiffness)
 
   const FieldBlock* field(const std::string& name) const {
     for (const auto& f : fields)

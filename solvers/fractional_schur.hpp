@@ -1,0 +1,43 @@
+#pragma once
+// A fractional model of the contact Schur complement on the constrained directions, an
+// alternative to the paper's scaled mass (32) (-<prefix>contact_schur fractional).
+//
+// Why: on the constrained directions S_g = B A^-1 B^T is the body's compliance seen through
+// the multiplier: the inverse of a Steklov-Poincare operator, of order -1 (a half-space
+// answers a surface load of wave number k with a displacement ~ 1 / (E* k)). A scaled mass
+// s M is of order 0: it can be right at one wave number only, so the spectrum of S~^-1 S_g
+// widens like 1 / h under refinement. The model
+//
+//   G = M V diag(g(mu)) V^T M,   K V = M V diag(mu),  V^T M V = I,
+//   g(mu) = s_high sqrt((mu_max + beta) / (mu + beta))
+//
+// (M = Pi M_lambda Pi, K = Pi K_surface Pi on the constrained rows) has the order -1
+// (g ~ 1 / k for mu ~ k^2 >> beta) and reduces to s M when g is constant. Its two
+// parameters come from the two compliance estimates the preconditioner already measures:
+// g(mu_max) = s_high, the element-end estimate (the most oscillating load is answered
+// almost locally, by diag(A)^-1); beta such that the model's Rayleigh quotient on the
+// smooth probe w equals s_smooth, the body-end estimate through the inner preconditioner.
+// beta ~ 1 / L^2 sets the length beyond which the finite body stops looking like a
+// half-space. No material constant enters: the calibration reads the current tangent.
+//
+// Cost: a dense generalised eigenproblem on the constrained rows (every rank holds them;
+// they live on the contact zone only): n_c^3 flops once per Newton iteration, a few ms for
+// the n_c <= 300 of the built-in scenes, and refused above max_rows.
+
+#include "common/petsc.hpp"
+
+namespace stiction::solvers {
+
+struct FractionalFit {
+  bool fitted = false;  // false: s_smooth <= s_high, or too many rows; G was not built
+  double beta = 0, mu_max = 0;
+  int rows = 0;  // constrained directions (the model's size)
+};
+
+// G on the multiplier numbering of `mass` (zero outside the constrained rows), or an empty
+// handle when the fit fails (see FractionalFit).
+// dim: multiplier components per node (the rows come in node blocks).
+PetscMat fractional_compliance(Mat mass, Mat stiffness, int dim, double s_high, double s_smooth, int max_rows,
+                               FractionalFit& fit);
+
+}  // namespace stiction::solvers
