@@ -34,7 +34,7 @@ double ContactPreconditioner::scale_from_options(Mat M, Mat mass) {
 }
 
 ContactPreconditioner::Factorisation ContactPreconditioner::factorisation_from_options() const {
-  char value[16] = "full";
+  char value[16] = "upper";
   PetscBool set;
   STICTION_PETSC(PetscOptionsGetString(nullptr, prefix_.c_str(), "-contact_fact", value, sizeof value, &set));
   const std::string v = value;

@@ -3,8 +3,8 @@
 //
 //   M = [A  B1; B2  D] = [A  -B^T; C_u  C_lambda],   S_g = D - B2 A^-1 B1,
 //
-// by default in the full four-factor form (8) with A^-1 replaced by the inner preconditioner
-// (HP (10), or MHP (11) with a pressure block) and S_g by
+// in the four-factor form (8) or a block-triangular part of it, with A^-1 replaced by the
+// inner preconditioner (HP (10), or MHP (11) with a pressure block) and S_g by
 //
 //   S~ = D + G,
 //
@@ -36,15 +36,18 @@
 //   contact-patch-2d     10.8 / 13.0 / 14.8  11.2 / 13.5 / 16.0  10.8 / 12.0 / 12.0  10.8 / 12.0 / 12.0
 // A scalar s cannot follow a compliance that falls with the load's wave number: the
 // fractional G can, and its counts stay flat under refinement (hertz-cylinder-2d 15.0 / 15.2
-// / 15.4; reports/contact-levels-0-2/).
+// / 15.4 with the full form; reports/contact-levels-0-2/).
 //
 // -<prefix>contact_fact picks the factorisation (PETSc's names for fieldsplit's):
-//   full (default, the paper's (8)):
+//   full (the paper's (8) and (33)):
 //     y = P_A^-1 r_a;  x_lambda = S~^-1 (r_lambda - B2 y);  x_a = P_A^-1 (r_a - B1 x_lambda)
-//   upper: x_lambda = S~^-1 r_lambda;  x_a = P_A^-1 (r_a - B1 x_lambda)
+//   upper (default): x_lambda = S~^-1 r_lambda;  x_a = P_A^-1 (r_a - B1 x_lambda)
 //   lower: x_a = P_A^-1 r_a;  x_lambda = S~^-1 (r_lambda - B2 x_a)
-// upper and lower apply P_A^-1 once per iteration instead of twice: more iterations, each
-// cheaper (measured in reports/contact-levels-0-2/).
+// Choice: upper by default. It applies P_A^-1 once per Krylov iteration instead of twice, so
+// an iteration costs what it costs without contact; it needs 10-20% more iterations than
+// full, and is faster on every contact scene at levels 0-2 (schur-amg, time per linear solve
+// against the same mesh without contact, worst level: full 1.37-2.38x, upper 1.11-1.98x;
+// reports/contact-levels-0-2/ and contact-levels-0-2-upper/).
 // S~ is solved by its own KSP (<prefix>ss_, a direct solve by default: it lives on the slave
 // surface only). With exact inner solves and S~ = S_g the full form is the exact inverse
 // (tests/backends).

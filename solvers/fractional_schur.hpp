@@ -20,9 +20,12 @@
 // beta ~ 1 / L^2 sets the length beyond which the finite body stops looking like a
 // half-space. No material constant enters: the calibration reads the current tangent.
 //
-// Cost: a dense generalised eigenproblem on the constrained rows (every rank holds them;
-// they live on the contact zone only): n_c^3 flops once per Newton iteration, a few ms for
-// the n_c <= 300 of the built-in scenes, and refused above max_rows.
+// Cost: a dense generalised eigenproblem on the constrained directions (every rank holds
+// them; they live on the contact zone only): ~n_c^3 flops once per Newton iteration, a few
+// ms for the n_c <= 300 of the built-in scenes. Above max_rows no model is built and the
+// caller falls back to the scaled mass; a contact zone of many thousand nodes (the paper's
+// block with strips at its finest level) would need the model applied matrix-free
+// (a Lanczos or Chebyshev approximation of (K + beta M)^1/2), which is not written.
 
 #include "common/petsc.hpp"
 
