@@ -193,25 +193,25 @@ Mat ContactPreconditioner::block(int row, int col) const {
 }
 
 void ContactPreconditioner::apply(Vec r, Vec x) const {
-  // full / lower: y = P_A^-1 r_a (the a part of x for lower); upper skips it (B2 y dropped).
+  // work_l_ = r_lambda - B2 y with y = P_A^-1 r_a (full, lower), or r_lambda (upper).
   Vec y_a, r_l, x_l;
-  if (factorisation_ != Factorisation::Upper) {
+  STICTION_PETSC(VecGetSubVector(r, is_l_, &r_l));
+  if (factorisation_ == Factorisation::Upper) {
+    STICTION_PETSC(VecCopy(r_l, work_l_));
+  } else {
     STICTION_PETSC(VecZeroEntries(work_));
     inner_->apply(r, work_);
     STICTION_PETSC(VecGetSubVector(work_, is_a_, &y_a));
     STICTION_PETSC(MatMult(B2_, y_a, work_l_));
     STICTION_PETSC(VecRestoreSubVector(work_, is_a_, &y_a));
-  } else {
-    STICTION_PETSC(VecZeroEntries(work_l_));
+    STICTION_PETSC(VecAYPX(work_l_, -1.0, r_l));
   }
-  STICTION_PETSC(VecGetSubVector(r, is_l_, &r_l));
-  STICTION_PETSC(VecAYPX(work_l_, -1.0, r_l));  // r_lambda - B2 y
   STICTION_PETSC(VecRestoreSubVector(r, is_l_, &r_l));
   STICTION_PETSC(VecGetSubVector(x, is_l_, &x_l));
-  STICTION_PETSC(KSPSolve(ksp_ss_, work_l_, x_l));  // x_lambda = S~^-1 (...)
+  STICTION_PETSC(KSPSolve(ksp_ss_, work_l_, x_l));  // x_lambda = S~^-1 work_l_
   if (factorisation_ != Factorisation::Lower) STICTION_PETSC(MatMult(B1_, x_l, work_a_));
   STICTION_PETSC(VecRestoreSubVector(x, is_l_, &x_l));
-  if (factorisation_ == Factorisation::Lower) {
+  if (factorisation_ == Factorisation::Lower) {  // x_a = y
     Vec x_a;
     STICTION_PETSC(VecGetSubVector(work_, is_a_, &y_a));
     STICTION_PETSC(VecGetSubVector(x, is_a_, &x_a));
