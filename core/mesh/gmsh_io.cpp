@@ -259,7 +259,9 @@ void build_sphere_octant_model(const SphereOctantSpec& spec) {
   const double R = spec.radius, h = spec.h * spec.scale, hc = spec.contact_size * spec.scale;
   gmsh::vectorpair out;
   std::vector<gmsh::vectorpair> map;
-  occ::intersect({{3, occ::addSphere(0, R, 0, R)}}, {{3, occ::addBox(0, 0, 0, R, R, R)}}, out, map);
+  const double side = spec.below ? -1 : 1;  // y of the ball's centre, in units of R
+  occ::intersect({{3, occ::addSphere(0, side * R, 0, R)}}, {{3, occ::addBox(0, spec.below ? -R : 0, 0, R, R, R)}}, out,
+                 map);
   occ::synchronize();
   std::vector<int> body;
   for (auto [d, t] : out)
@@ -275,8 +277,8 @@ void build_sphere_octant_model(const SphereOctantSpec& spec) {
     double b[6];
     gmsh::model::getBoundingBox(d, t, b[0], b[1], b[2], b[3], b[4], b[5]);
     const bool x0 = std::abs(b[0]) < tol && std::abs(b[3]) < tol, z0 = std::abs(b[2]) < tol && std::abs(b[5]) < tol;
-    const bool top = std::abs(b[1] - R) < tol && std::abs(b[4] - R) < tol;
-    groups[x0 ? "symmetry-x" : z0 ? "symmetry-z" : top ? "top" : "surface"].push_back(t);
+    const bool flat = std::abs(b[1] - side * R) < tol && std::abs(b[4] - side * R) < tol;
+    groups[x0 ? "symmetry-x" : z0 ? "symmetry-z" : flat ? (spec.below ? "base" : "top") : "surface"].push_back(t);
   }
   int tag = 0;
   for (const auto& [name, entities] : groups) {

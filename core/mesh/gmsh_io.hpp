@@ -46,6 +46,9 @@ struct SphereOctantSpec {
   double contact_size = 0;
   double contact_zone = 0;
   double scale = 1;
+  // The ball lies above its pole (centre (0, R, 0), flat face "top" at y = R) or, with
+  // below, under it (centre (0, -R, 0), flat face "base" at y = -R).
+  bool below = false;
 };
 Mesh generate_sphere_octant(const SphereOctantSpec& spec);
 

@@ -51,9 +51,10 @@ struct Schemas {
              {"arc_centers", VT::FloatArray, "'polygon': centre x, y of each arc side", false},
              {"size", VT::FloatArray, "box side lengths [lx, ly] (2D) or [lx, ly, lz] (3D)", false},
              {"h", VT::Float, "target element size for the 'box', 'polygon' and 'sphere-octant' generators (Gmsh)", false},
-             {"radius", VT::Float, "'sphere-octant': radius R (ball centred at (0, R, 0), pole at the origin)", false},
+             {"radius", VT::Float, "'sphere-octant': radius R (pole at the origin, ball above or below it: see pole)", false},
              {"contact_size", VT::Float, "'sphere-octant': element size near the pole (<= h)", false},
              {"contact_zone", VT::Float, "'sphere-octant': distance from the pole meshed at contact_size", false, 0.0},
+             {"pole", VT::String, "'sphere-octant': 'bottom' (ball above the origin, flat face 'top') or 'top' (ball below it, flat face 'base')", false, std::string("bottom"), {"bottom", "top"}},
              {"cells", VT::FloatArray, "cells per side for 'structured-box'", false}}};
     body = {"body",
             {{"name", VT::String, "body name (prefix of its boundary names: 'block/top')", true},
@@ -210,6 +211,7 @@ mesh::Mesh make_body_mesh(const toml::table& t, const std::string& file, const s
     spec.h = get_float(t, S, "h");
     spec.contact_size = get_float(t, S, "contact_size");
     spec.contact_zone = get_float(t, S, "contact_zone");
+    spec.below = get_string(t, S, "pole") == "top";
     spec.scale = std::ldexp(1.0, -level);  // re-meshed per level: the sphere stays exact
     *refined = true;
     return mesh::generate_sphere_octant(spec);
