@@ -131,7 +131,8 @@ TEST_P(EveryBackend, SameSolutionAsLuMumps) {
 INSTANTIATE_TEST_SUITE_P(Backends, EveryBackend,
                          ::testing::Combine(::testing::Values("cantilever-2d", "small-block", "hertz-cylinder-2d",
                                                               "hertz-cylinders-2d", "contact-patch-2d", "self-contact-2d",
-                                                              "sliding-block-2d", "hertz-sphere-3d"),
+                                                              "sliding-block-2d", "hertz-sphere-3d",
+                                                              "hertz-spheres-3d"),
                                             ::testing::ValuesIn(available_backends())),
                          [](const auto& info) {
                            std::string n = std::get<0>(info.param) + "_" + std::get<1>(info.param);
