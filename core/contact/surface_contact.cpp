@@ -7,7 +7,6 @@
 #include <boost/geometry/index/rtree.hpp>
 #include <cmath>
 #include <map>
-#include <set>
 
 #include "common/error.hpp"
 #include "fem/quadrature.hpp"
