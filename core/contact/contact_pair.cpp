@@ -40,7 +40,8 @@ void ContactPair::evaluate(int step, const std::vector<double>& u, const double*
     // A node that lost its projection cannot press: it takes the inactive row until the
     // state machine releases it.
     const NodeState s = k.admissible ? state_[i] : NodeState::Inactive;
-    const NodeRow row = node_row(s, k.n, k.G, k.S, lam, settings_.friction, r_t_[i]);
+    NodeRow row = node_row(s, k.n, k.G, k.S, lam, settings_.friction, r_t_[i]);
+    if (settings_.mass_weighted_rows) row = weighted_by_mass(row, s, k.n, slave_.lumped_mass[i]);
     for (int c = 0; c < d; ++c) r_c[i * d + c] = row.c[c];
     if (!jacobian) continue;
     const PetscInt row0 = offset + static_cast<PetscInt>(i) * d;

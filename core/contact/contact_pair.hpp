@@ -47,6 +47,16 @@ struct ContactSettings {
   enum class NormalLinearisation { Exact, Dropped, Settled };
   NormalLinearisation normal_linearisation = NormalLinearisation::Settled;
   double settle_tolerance = 1e-2;  // Settled: largest |d lambda| / |lambda| of a settled update
+  // The rows of a released node (lambda = 0) and the tangential rows of a slipping node are
+  // in traction units, the gap rows and the force rows of the displacement block in
+  // traction x area (3D) or x length (2D); with true those traction rows are multiplied by
+  // the node's lumped mass m_i (node_row.hpp: weighted_by_mass), so every row of the right
+  // side carries forces. Off by default (choice, measured at level 1 with schur-amg, Newton
+  // iterations and Krylov per solve without -> with): hertz-cylinders-2d 11, 10.2 -> 10,
+  // 13.7; hertz-sphere-3d 8, 20.6 -> 5, 30.0; sliding-block-2d 13, 18.8 -> 12, 21.5;
+  // hertz-spheres-3d, where the traction rows outweighed the forces by up to 1e5, the active
+  // set cycled in step 2 -> 10, 28.5 (hertz-spheres-3d sets it).
+  bool mass_weighted_rows = false;
 };
 
 // Kinematics of one slave node at a displacement u. The derivative maps hold, per

@@ -56,6 +56,18 @@ NodeRow node_row(NodeState state, const Vec3& n_value, const Vec3& G_value, cons
   return row;
 }
 
+NodeRow weighted_by_mass(NodeRow row, NodeState s, const Vec3& n, double m) {
+  if (s == NodeState::Inactive) {
+    row.c *= m, row.d_lambda *= m;
+  } else if (s == NodeState::Slip) {
+    const Mat3 Q = m * Mat3::Identity() + (1 - m) * n * n.transpose();
+    row.d_normal = Q * row.d_normal + (1 - m) * (n.dot(row.c) * Mat3::Identity() + n * row.c.transpose());
+    row.d_gap = Q * row.d_gap, row.d_slip = Q * row.d_slip, row.d_lambda = Q * row.d_lambda;
+    row.c = Q * row.c;
+  }
+  return row;
+}
+
 NodeQuantities node_quantities(const Vec3& n, const Vec3& G, const Vec3& S, const Vec3& lambda) {
   const Vec3 gt = S - n * n.dot(S), lambda_t = lambda - n * n.dot(lambda);
   NodeQuantities q;

@@ -41,6 +41,11 @@ struct NodeRow {
 NodeRow node_row(NodeState state, const Vec3& n, const Vec3& G, const Vec3& S, const Vec3& lambda, double mu,
                  double r_t);
 
+// The row of a node in state s, normal n, with its traction rows (released: lambda = 0;
+// slipping: the tangential part, c - n (n . c)) multiplied by the lumped mass m, chained
+// exactly: c' = Q c, Q = m I + (1 - m) n n^T, so dc'/dn picks up (1 - m)((n . c) I + n c^T).
+NodeRow weighted_by_mass(NodeRow row, NodeState s, const Vec3& n, double m);
+
 // The quantities the state machine (Sec. 4.5) tests at node i.
 NodeQuantities node_quantities(const Vec3& n, const Vec3& G, const Vec3& S, const Vec3& lambda);
 

@@ -97,7 +97,10 @@ struct Schemas {
                 {"normal_linearisation", VT::String,
                  "'surface': the nodal normals' variation in the Jacobian: always, never (the paper), or once the "
                  "states settled",
-                 false, std::string("settled"), {"exact", "dropped", "settled"}}}};
+                 false, std::string("settled"), {"exact", "dropped", "settled"}},
+                {"mass_weighted_rows", VT::Boolean,
+                 "rows in traction units (released nodes, slip tangential) times the lumped mass m_i", false,
+                 false}}};
     load = {"load", {{"steps", VT::Integer, "number of quasi-static load steps", false, std::int64_t{1}}}};
     newton = {"newton",
               {{"atol", VT::Float, "absolute tolerance on the free residual norm", false, 1e-10},
@@ -327,6 +330,7 @@ std::unique_ptr<nonlinear::MultiplierConstraint> make_contact(const Scene& s, co
   cs.gap_tolerance = get_float(t, S, "gap_tolerance");
   cs.force_tolerance = get_float(t, S, "force_tolerance");
   cs.tangential_penalty = get_float(t, S, "tangential_penalty");
+  cs.mass_weighted_rows = get_bool(t, S, "mass_weighted_rows");
   const std::string normals = get_string(t, S, "normal_linearisation");
   using NL = contact::ContactSettings::NormalLinearisation;
   cs.normal_linearisation = normals == "exact" ? NL::Exact : normals == "dropped" ? NL::Dropped : NL::Settled;

@@ -120,8 +120,8 @@ TEST(Hertz2D, TwoDeformableCylindersConvergeToHertz) { check_hertz(kTwoCylinders
 TEST(Hertz3D, SphereOnRigidPlaneConvergesToHertz) { check_hertz(kSphereOnPlane, 2, PeakEstimate::Fit); }
 
 // Two deformable spheres (surface_contact.hpp: the upper sphere's normals crossing the lower
-// sphere's P2 triangles), levels 0-2 (340 000 unknowns at level 2, schur-amg with the
-// Krylov tolerance held per block, as the scene sets it; about 4 minutes and 5 GB here).
+// sphere's P2 triangles), levels 0-2 (340 000 unknowns at level 2, schur-amg, the traction
+// rows weighted by the lumped mass as the scene sets it).
 // Measured: a_fit error 0.81% / 1.33% / 0.32%, p0 of the fit 1.66% / 0.19% / 0.25%, p0 at
 // the pole node 0.04% / 1.76% / 0.83%; the trend is asserted on the fit as on the plane.
 TEST(Hertz3D, TwoDeformableSpheresConvergeToHertz) { check_hertz(kTwoSpheres, 2, PeakEstimate::Fit); }

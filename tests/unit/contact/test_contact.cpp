@@ -225,10 +225,12 @@ void expect_exact_directional_derivatives(ContactPair& pair, int step, int n_u, 
 }
 
 // 3D: the block-on-block scene extruded along z (the slave 0.6 deep on a master 1 deep), P2
-// triangles on both sides. The master moves by a random affine map, the slave randomly;
-// directional differences, as the column-wise check is slow in 3D.
+// triangles on both sides, the traction rows weighted by the lumped mass (contact_pair.hpp).
+// The master moves by a random affine map, the slave randomly; directional differences, as
+// the column-wise check is slow in 3D.
 TEST(SurfaceContact, JacobianMatchesFiniteDifferencesIn3D) {
   std::string text = test::replaced(kBlockOnBlock, "h = 0.4\n", "h = 0.4\nthickness = 1.0\n");
+  text = test::replaced(text, "friction = 0.4\n", "friction = 0.4\nmass_weighted_rows = true\n");
   text = test::replaced(text, "h = 0.3\n", "h = 0.3\nthickness = 0.6\n");
   auto s = scene::build_scene(text, "block-on-block-3d", ".");
   auto& pair = dynamic_cast<SurfaceContact&>(*s->contacts.at(0));
