@@ -39,8 +39,7 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
                         space.quadratic_block().second - space.quadratic_block().first, space.n_dofs());
   header += fmt::format("# solver: {}; newton atol {:g}, rtol {:g}, max_iterations {}, forcing {}\n", o.solver,
                         scene->newton.atol, scene->newton.rtol, scene->newton.max_iterations,
-                        nonlinear::to_string(scene->newton.forcing) +
-                            (scene->newton.forcing_per_block ? " per block" : ""));
+                        nonlinear::to_string(scene->newton.forcing));
   if (!o.quiet) fmt::print(stderr, "{}", header);
 
   std::unique_ptr<StepTable> table;

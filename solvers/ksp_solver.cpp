@@ -146,13 +146,6 @@ void KspSolver::set_relative_tolerance(double rtol) {
   STICTION_PETSC(KSPSetTolerances(ksp_, rtol, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
 }
 
-double KspSolver::relative_tolerance() const {
-  PetscReal rtol, abstol, dtol;
-  PetscInt max_it;
-  STICTION_PETSC(KSPGetTolerances(ksp_, &rtol, &abstol, &dtol, &max_it));
-  return rtol;
-}
-
 void KspSolver::apply_preconditioner(Vec in, Vec out) const {
   PC pc;
   STICTION_PETSC(KSPGetPC(ksp_, &pc));

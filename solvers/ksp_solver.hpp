@@ -26,7 +26,6 @@ public:
   std::string describe() const override;
   void apply_preconditioner(Vec in, Vec out) const override;
   void set_relative_tolerance(double rtol) override;
-  double relative_tolerance() const override;
 
 protected:
   // Backend figures after set-up (factorisation memory, AMG complexity, ...);

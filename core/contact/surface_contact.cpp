@@ -222,13 +222,14 @@ std::vector<Branch<D>> valid_projections(const FacetEvaluator<D>& ev, const Face
                                          const MasterCandidates<D>& candidates, const std::vector<double>& u,
                                          double search_radius) {
   std::vector<Branch<D>> valid;
+  const typename Geometry<D>::Vec slave_normal = facets::outward_normal<D>(f, s.dx);
   auto consider = [&](const Facet* m) {
     Branch<D> b;
     b.facet = m;
-    if constexpr (D == 2) b.p = facets::project<D>(ev, *m, s.x, u);
-    else b.p = facets::intersect<D>(ev, *m, s.x, facets::outward_normal<D>(f, s.dx), u);
+    if constexpr (D == 2) b.p = facets::project(ev, *m, s.x, u);
+    else b.p = facets::intersect<D>(ev, *m, s.x, slave_normal, u);
     if (!b.p.found || b.p.distance > search_radius) return;
-    if (facets::outward_normal<D>(f, s.dx).dot(facets::outward_normal<D>(*m, b.p.y.dx)) >= 0) return;
+    if (slave_normal.dot(facets::outward_normal<D>(*m, b.p.y.dx)) >= 0) return;  // the master's back
     valid.push_back(std::move(b));
   };
   if constexpr (D == 2) {

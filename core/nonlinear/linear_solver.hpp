@@ -34,9 +34,6 @@ public:
   // Relative tolerance of the next solve: the inexact-Newton forcing term. Iterative
   // backends apply it after set-up (it overrides their -ksp_rtol); direct ones ignore it.
   virtual void set_relative_tolerance(double rtol) {}
-  // The relative tolerance the next solve would use after set-up (its -ksp_rtol); 0 for a
-  // backend without one.
-  virtual double relative_tolerance() const { return 0; }
   // One application of the preconditioner of the last set-up (for a direct backend, the
   // triangular solves): out = P^-1 in. For benchmarks and tests.
   virtual void apply_preconditioner(Vec in, Vec out) const = 0;

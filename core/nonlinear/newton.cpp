@@ -52,33 +52,6 @@ Forcing forcing_from_string(const std::string& name) {
   throw Error(fmt::format("unknown Newton forcing '{}' (accepted: fixed, eisenstat-walker)", name));
 }
 
-double QuasiStaticSolver::balanced_forcing(double eta, double tol_u, double tol_c) const {
-  // Contact systems: the right side has a displacement block (forces) and a multiplier block
-  // (weighted gaps and slips), in different units, and the Krylov test is relative to their
-  // joint norm. Where one block dominates, a solve can meet eta by reducing that block
-  // alone: measured on hertz-spheres-3d level 1 with schur-amg, the gap block outweighed the
-  // forces by up to 1e5, GMRES met 1e-4 in one iteration while the force residual did not
-  // fall, and Newton took 14 iterations in step 1 and cycled in step 2 (5 + 7 with an exact
-  // solve). So the joint residual must reach, for each block, eta times that block or a
-  // tenth of its Newton tolerance if larger (no solve needs to beat what Newton will
-  // accept): the smaller of the two targets, relative to the joint norm, never above eta.
-  const PetscInt n_u = problem_.space->n_dofs();
-  std::vector<double> b_u(static_cast<size_t>(n_u));
-  const PetscScalar* a;
-  PetscInt n;
-  STICTION_PETSC(VecGetLocalSize(system_.rhs, &n));
-  STICTION_PETSC(VecGetArrayRead(system_.rhs, &a));
-  std::copy(a, a + n_u, b_u.begin());
-  double all = 0, multipliers = 0;
-  for (PetscInt k = 0; k < n; ++k) all += a[k] * a[k];
-  for (PetscInt k = n_u; k < n; ++k) multipliers += a[k] * a[k];
-  STICTION_PETSC(VecRestoreArrayRead(system_.rhs, &a));
-  all = std::sqrt(all), multipliers = std::sqrt(multipliers);
-  if (!(all > 0)) return eta;
-  const double target = std::min(std::max(eta * free_norm(b_u), 0.1 * tol_u), std::max(eta * multipliers, 0.1 * tol_c));
-  return std::min(eta, target / all);
-}
-
 std::string to_string(Forcing f) { return f == Forcing::Fixed ? "fixed" : "eisenstat-walker"; }
 
 namespace {
@@ -469,8 +442,7 @@ StepResult QuasiStaticSolver::solve_step(int step) {
   for (int it = 0;; ++it) {
     const bool pending = lift_pending();
     const double tol = std::max(settings_.atol, settings_.rtol * res.reference_residual);
-    const double c_tol = std::max(settings_.atol, settings_.rtol * c_reference);
-    const bool constraints_ok = last_changes == 0 && cnorm <= c_tol;
+    const bool constraints_ok = last_changes == 0 && cnorm <= std::max(settings_.atol, settings_.rtol * c_reference);
     if (!pending && (it > 0 || rnorm <= settings_.atol) && constraints_ok && rnorm <= tol)
       return finish(rnorm <= settings_.atol ? NewtonReason::ConvergedAbsolute : NewtonReason::ConvergedRelative);
     if (it == settings_.max_iterations) {
@@ -496,10 +468,7 @@ StepResult QuasiStaticSolver::solve_step(int step) {
       // level 1 with schur-amg: uncapped, 25 iterations and 953 state changes without
       // converging; so eta never exceeds the fixed default there.
       if (!lambda_.empty()) eta = std::min(eta, kContactForcingCap);
-      const bool per_block = settings_.forcing_per_block && !lambda_.empty();
-      linear_.set_relative_tolerance(per_block ? balanced_forcing(eta, tol, c_tol) : eta);
-    } else if (settings_.forcing_per_block && !lambda_.empty() && linear_.relative_tolerance() > 0) {
-      linear_.set_relative_tolerance(balanced_forcing(linear_.relative_tolerance(), tol, c_tol));
+      linear_.set_relative_tolerance(eta);
     }
     r_prev = rnorm;
     rec.linear = linear_.solve(system_, du);

@@ -47,14 +47,6 @@ struct NewtonSettings {
   int max_backtracks = 10;      // step halvings when a trial state inverts a cell or is NaN
   double divergence_factor = 1e8;  // residual above this times r_ref: diverged
   Forcing forcing = Forcing::Fixed;
-  // Contact systems: each block of the right side (forces, weighted gaps) must meet the
-  // Krylov tolerance, not only their joint norm (QuasiStaticSolver::balanced_forcing). Off
-  // by default: it costs Krylov iterations where the joint test already works (measured at
-  // level 1 with schur-amg, Krylov per solve: hertz-cylinders-2d 10.2 -> 17.1,
-  // hertz-sphere-3d 22.8 -> 37.4). On hertz-spheres-3d it cured the cycling active set (12
-  // Newton iterations, 65.3 Krylov per solve at level 1), but weighting the traction rows
-  // by mass does it for less (ContactSettings::mass_weighted_rows: 10, 28.5).
-  bool forcing_per_block = false;
 };
 
 enum class NewtonReason {
@@ -141,9 +133,6 @@ private:
   };
   void set_step_targets(int step);
   double lifted_rhs_free_norm() const;
-  // The Krylov tolerance of a contact system's solve for forcing term eta, given the Newton
-  // tolerances of the displacement (tol_u) and multiplier (tol_c) residuals.
-  double balanced_forcing(double eta, double tol_u, double tol_c) const;
   void split_update(Vec du, std::vector<double>& dv, std::vector<double>& dl) const;
   TrialStep take_step(int step, const std::vector<double>& dv, const std::vector<double>& dl, Residuals& rt);
   double contact_force_norm(const Residuals& r) const;

@@ -109,9 +109,7 @@ struct Schemas {
                {"max_backtracks", VT::Integer, "step halvings when a trial state inverts a cell", false,
                 std::int64_t{10}},
                {"forcing", VT::String, "Krylov tolerance per Newton step (inexact Newton)", false, std::string("fixed"),
-                {"fixed", "eisenstat-walker"}},
-               {"forcing_per_block", VT::Boolean,
-                "contact: each block of the right side (forces, gaps) meets the Krylov tolerance", false, false}}};
+                {"fixed", "eisenstat-walker"}}}};
     output = {"output",
               {{"vtu", VT::Boolean, "write a VTU per load step and a PVD collection", false, true},
                {"csv", VT::Boolean, "write per-step quantities as CSV", false, true}}};
@@ -481,7 +479,6 @@ std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& o
   s.newton.max_iterations = static_cast<int>(get_int(nw, S.newton, "max_iterations"));
   s.newton.max_backtracks = static_cast<int>(get_int(nw, S.newton, "max_backtracks"));
   s.newton.forcing = nonlinear::forcing_from_string(get_string(nw, S.newton, "forcing"));
-  s.newton.forcing_per_block = get_bool(nw, S.newton, "forcing_per_block");
   if (!(s.newton.atol >= 0 && s.newton.rtol >= 0 && s.newton.max_iterations >= 1))
     throw Error(fmt::format("{}: newton tolerances must be >= 0 and max_iterations >= 1", origin));
   const toml::table& out = sub(root, "output");
