@@ -58,6 +58,13 @@ struct ContactSettings {
   // set cycled in step 2 -> 10, 28.5 (hertz-spheres-3d sets it; holding each block of the
   // right side to the Krylov tolerance instead, removed after 433c5b4, gave 12, 65.3).
   bool mass_weighted_rows = false;
+  // The master point x2 of a slave point x1 on a deformable master (surface_contact.hpp):
+  //   Closest         the closest point (paper Sec. 4.1); the only rule in 2D;
+  //   NormalCrossing  where the slave facet's normal through x1 crosses the master (3D
+  //                   default, choice: the closest point jumps across the edges of a
+  //                   curved master, and Newton fails on hertz-spheres-3d with it).
+  enum class MasterPoint { Closest, NormalCrossing };
+  MasterPoint master_point = MasterPoint::NormalCrossing;  // 2D pairs ignore it (Closest)
 };
 
 // Kinematics of one slave node at a displacement u. The derivative maps hold, per

@@ -1,8 +1,8 @@
 #pragma once
 // Facets of a contact surface in the current configuration, for 2D (P1/P2 segments, one
 // parameter) and 3D (P1/P2 triangles, two parameters), and the closest-point projection of a
-// point on one facet with the sensitivity of the projection parameter (paper Sec. 4.1: the
-// master point x2 of a slave point x1). Templates on the space dimension D, used by
+// point on one facet (or, 3D, the crossing of a line) with the sensitivity of the projection
+// parameter (paper Sec. 4.1: the master point x2 of a slave point x1). Templates on the space dimension D, used by
 // surface_contact.cpp; the facet parameter eta has P = D - 1 components (reference simplex).
 #include <Eigen/Dense>
 #include <algorithm>
@@ -160,16 +160,19 @@ private:
 };
 
 // A master point y(eta) of x on a facet. For a closest point (project below) `sensitivity`
-// maps d F / du to d eta / du, where F(eta, u) = (x - y(eta)) . y' is the projection
-// equation: by the implicit function theorem, d eta = -dF / F', F' = -|y'|^2 + (x - y) . y''
-// inside the segment, 0 at a clamped end (eta does not move).
+// maps d F / du to d eta / du, where F_k(eta, u) = (x - y(eta)) . y_,k is the projection
+// equation: by the implicit function theorem on the face of the facet where eta lies,
+//   d eta = -V (V^T H V)^-1 V^T dF,   H_kl = dF_k / d eta_l = -y_,k . y_,l + (x - y) . y_,kl,
+// V a basis of that face's directions in eta: the identity inside the facet, the edge's
+// direction on an edge (3D), none at a vertex (eta does not move: sensitivity 0).
 //
-// For a ray intersection (intersect below) the sensitivity is ray_inverse instead: with
-// z = (eta, t) and R(z, u) = x + t nu - y(eta) = 0, dz = -A^-1 dR, A = [-y_,eta  nu].
+// For a ray intersection (intersect below, crossing = true) the sensitivity is ray_inverse
+// instead: with z = (eta, t) and R(z, u) = x + t nu - y(eta) = 0, dz = -A^-1 dR,
+// A = [-y_,eta  nu].
 template <int D>
 struct Projection {
   using G = Geometry<D>;
-  bool found = false, interior = false;
+  bool found = false, interior = false, crossing = false;
   typename G::Param eta = G::Param::Zero();
   typename G::ParamMatrix sensitivity = G::ParamMatrix::Zero();
   double distance = 0, t = 0;
@@ -224,6 +227,92 @@ inline Projection<2> project(const FacetEvaluator<2>& ev, const SurfaceFacet& m,
   return p;
 }
 
+namespace detail {
+
+// H of the projection equation at y (see Projection).
+template <int D>
+typename Geometry<D>::ParamMatrix projection_hessian(const typename Geometry<D>::Vec& x, const FacetPoint<D>& y) {
+  constexpr int P = D - 1;
+  typename Geometry<D>::ParamMatrix H;
+  for (int k = 0; k < P; ++k)
+    for (int l = 0; l < P; ++l) H(k, l) = -y.dx.col(k).dot(y.dx.col(l)) + (x - y.x).dot(y.ddx[k * P + l]);
+  return H;
+}
+
+enum class FaceNewton { Converged, Left, NoMinimum };
+
+// Newton on V^T F(origin + V t) = 0 (the closest point of x on one face of a triangle: its
+// interior, V = I, or an edge, V its direction), from t. Left: the iterate went far off the
+// triangle; NoMinimum: -V^T H V is not positive definite there (the distance has no minimum
+// along the face). The same convergence test as the segment's project (2D) below.
+template <int K>
+FaceNewton face_newton(const FacetEvaluator<3>& ev, const SurfaceFacet& m, const Geometry<3>::Vec& x,
+                       const std::vector<double>& u, const Geometry<3>::Param& origin,
+                       const Eigen::Matrix<double, 2, K>& V, Eigen::Matrix<double, K, 1>& t) {
+  for (int it = 0, polish = 0; it < 30; ++it) {
+    const FacetPoint<3> y = ev.at(m, origin + V * t, u);
+    const Eigen::Matrix<double, K, K> HV = V.transpose() * projection_hessian<3>(x, y) * V;
+    if (Eigen::LLT<Eigen::Matrix<double, K, K>>(-HV).info() != Eigen::Success) return FaceNewton::NoMinimum;
+    const Eigen::Matrix<double, K, 1> step = HV.ldlt().solve(V.transpose() * (y.dx.transpose() * (x - y.x)));
+    t -= step;
+    if (!inside<2>(Geometry<3>::Param(origin + V * t), 0.5)) return FaceNewton::Left;
+    if (step.norm() < 1e-10 && ++polish > 2) return FaceNewton::Converged;
+  }
+  return FaceNewton::Left;
+}
+
+// The projection at eta on the face spanned by V (2 x K, K = 0 at a vertex).
+template <int K>
+Projection<3> closest_on_face(const FacetEvaluator<3>& ev, const SurfaceFacet& m, const Geometry<3>::Vec& x,
+                              const std::vector<double>& u, const Geometry<3>::Param& eta,
+                              const Eigen::Matrix<double, 2, K>& V) {
+  Projection<3> p;
+  p.found = true;
+  p.interior = K == 2;
+  p.eta = eta;
+  p.y = ev.at(m, eta, u);
+  p.distance = (x - p.y.x).norm();
+  if constexpr (K > 0) {
+    const Eigen::Matrix<double, K, K> HV = V.transpose() * projection_hessian<3>(x, p.y) * V;
+    p.sensitivity = -V * HV.inverse() * V.transpose();
+  }
+  return p;
+}
+
+}  // namespace detail
+
+// Closest point of x on triangle m (3D, choice of master_point = "closest"): Newton inside
+// the triangle from its centroid; where that converges outside or leaves it, the closest
+// point on each of the three edges (Newton along the edge, clamped to its end vertices),
+// the nearest of them. Not found when the distance has no minimum inside the triangle
+// (-H not positive definite) or on any edge.
+inline Projection<3> project(const FacetEvaluator<3>& ev, const SurfaceFacet& m, const Geometry<3>::Vec& x,
+                             const std::vector<double>& u) {
+  using Param = Geometry<3>::Param;
+  Param t = Param::Constant(1.0 / 3);
+  const auto inner = detail::face_newton<2>(ev, m, x, u, Param::Zero(), Eigen::Matrix2d::Identity(), t);
+  if (inner == detail::FaceNewton::NoMinimum) return {};
+  if (inner == detail::FaceNewton::Converged && detail::inside<2>(t, 0))
+    return detail::closest_on_face<2>(ev, m, x, u, t, Eigen::Matrix2d::Identity());
+  const Param corner[3] = {Param(0, 0), Param(1, 0), Param(0, 1)};
+  Projection<3> best;
+  for (int e = 0; e < 3; ++e) {
+    const Param a = corner[e], direction = corner[(e + 1) % 3] - a;
+    Eigen::Matrix<double, 1, 1> s(0.5);
+    const auto along = detail::face_newton<1>(ev, m, x, u, a, Eigen::Matrix<double, 2, 1>(direction), s);
+    if (along == detail::FaceNewton::NoMinimum) continue;
+    Projection<3> p;
+    if (along == detail::FaceNewton::Converged && s[0] >= 0 && s[0] <= 1)
+      p = detail::closest_on_face<1>(ev, m, x, u, Param(a + direction * s[0]),
+                                     Eigen::Matrix<double, 2, 1>(direction));
+    else  // clamped to the nearer end vertex
+      p = detail::closest_on_face<0>(ev, m, x, u, Param(a + direction * std::clamp(s[0], 0.0, 1.0)),
+                                     Eigen::Matrix<double, 2, 0>());
+    if (!best.found || p.distance < best.distance) best = p;
+  }
+  return best;
+}
+
 // Where the line x + t nu meets facet m (Newton on R(eta, t) = x + t nu - y(eta) = 0 from the
 // centroid, t = 0). Found only when the crossing lies on the facet (eta inside it, edges
 // included): unlike the closest point, the crossing moves continuously from one facet to the
@@ -249,7 +338,7 @@ Projection<D> intersect(const FacetEvaluator<D>& ev, const SurfaceFacet& m, cons
     if (!detail::inside<P>(typename G::Param(z.template head<P>()), 0.5)) return p;
     if (step.template head<P>().norm() < 1e-10 && ++polish > 2) {
       if (!detail::inside<P>(typename G::Param(z.template head<P>()), 0)) return p;
-      p.found = p.interior = true;
+      p.found = p.interior = p.crossing = true;
       p.eta = z.template head<P>();
       p.t = z[P];
       p.y = ev.at(m, p.eta, u);

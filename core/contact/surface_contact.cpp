@@ -156,9 +156,9 @@ struct Branch {
 };
 
 // d eta / du of branch b at slave point s.
-// 2D, closest point: sensitivity dF / du, F_k = (x1 - y) . y_,k; the slave's nodes move x1,
+// Closest point: sensitivity dF / du, F_k = (x1 - y) . y_,k; the slave's nodes move x1,
 // the master's move y and its tangents.
-// 3D, crossing of the slave normal nu = n1(xi) (unnormalised) through x1: d(eta, t) =
+// Crossing of the slave normal nu = n1(xi) (unnormalised) through x1 (3D): d(eta, t) =
 // -A^-1 dR with dR = d x1 + t d nu (slave nodes) or -d y (master nodes), facet_projection.hpp.
 template <int D>
 void projection_derivative(const FacetEvaluator<D>& ev, const Facet& slave, const FacetPoint<D>& s, Branch<D>& b) {
@@ -167,7 +167,7 @@ void projection_derivative(const FacetEvaluator<D>& ev, const Facet& slave, cons
   constexpr int P = D - 1;
   b.deta.clear();
   const auto& y = b.p.y;
-  if constexpr (D == 2) {
+  if (!b.p.crossing) {
     if (b.p.sensitivity.isZero(0)) return;  // at a vertex: eta does not move
     const Vec r = s.x - y.x;
     for (int a = 0; a < ev.n(); ++a)
@@ -210,6 +210,7 @@ struct MasterCandidates {
   const MasterTree<D>* tree = nullptr;
   const std::vector<Facet>* master = nullptr;
   std::vector<const Facet*> listed;
+  bool closest_point = true;  // 3D: the closest point instead of the slave normal's crossing
 };
 
 // The valid master points of slave point s (farther than the search radius, off the facet
@@ -227,7 +228,8 @@ std::vector<Branch<D>> valid_projections(const FacetEvaluator<D>& ev, const Face
     Branch<D> b;
     b.facet = m;
     if constexpr (D == 2) b.p = facets::project(ev, *m, s.x, u);
-    else b.p = facets::intersect<D>(ev, *m, s.x, slave_normal, u);
+    else b.p = candidates.closest_point ? facets::project(ev, *m, s.x, u)
+                                        : facets::intersect<D>(ev, *m, s.x, slave_normal, u);
     if (!b.p.found || b.p.distance > search_radius) return;
     if (slave_normal.dot(facets::outward_normal<D>(*m, b.p.y.dx)) >= 0) return;  // the master's back
     valid.push_back(std::move(b));
@@ -546,7 +548,8 @@ void SurfaceContact::kinematics(const std::vector<double>& u, const double* lamb
 
   std::vector<std::pair<Box<D>, int>> hits;
   for (const Facet& f : slave_facets_) {
-    MasterCandidates<D> candidates{&tree, &master_facets_, {}};
+    MasterCandidates<D> candidates{&tree, &master_facets_, {},
+                                   settings_.master_point == ContactSettings::MasterPoint::Closest};
     const Box<D> near = facet_box<D>(ev, f, u, search_radius_);
     if constexpr (D == 2) {
       hits.clear();

@@ -98,6 +98,10 @@ struct Schemas {
                  "'surface': the nodal normals' variation in the Jacobian: always, never (the paper), or once the "
                  "states settled",
                  false, std::string("settled"), {"exact", "dropped", "settled"}},
+                {"master_point", VT::String,
+                 "'surface', 3D: the slave point's partner on the master: where the slave normal crosses it "
+                 "(default) or the closest point (the paper's; 2D always uses the closest point)",
+                 false, std::string("normal-crossing"), {"normal-crossing", "closest"}},
                 {"mass_weighted_rows", VT::Boolean,
                  "rows in traction units (released nodes, slip tangential) times the lumped mass m_i", false,
                  false}}};
@@ -319,7 +323,7 @@ std::unique_ptr<nonlinear::MultiplierConstraint> make_contact(const Scene& s, co
   if (name.empty()) name = what;
   const std::string master = get_string(t, S, "master");
   const std::vector<std::string> plane_keys{"point", "normal", "motion", "schedule"},
-      surface_keys{"master_body", "master_boundary", "search_radius", "normal_linearisation"};
+      surface_keys{"master_body", "master_boundary", "search_radius", "normal_linearisation", "master_point"};
   for (const std::string& key : master == "plane" ? surface_keys : plane_keys)
     if (t.contains(key))
       throw Error(fmt::format("{}: {}: key '{}' does not apply to master '{}'", file, what, key, master));
@@ -332,6 +336,12 @@ std::unique_ptr<nonlinear::MultiplierConstraint> make_contact(const Scene& s, co
   const std::string normals = get_string(t, S, "normal_linearisation");
   using NL = contact::ContactSettings::NormalLinearisation;
   cs.normal_linearisation = normals == "exact" ? NL::Exact : normals == "dropped" ? NL::Dropped : NL::Settled;
+  const bool closest = get_string(t, S, "master_point") == "closest";
+  if (!closest && t.contains("master_point") && s.mesh.dim == 2)
+    throw Error(fmt::format("{}: {}: master_point 'normal-crossing' is 3D only (2D uses the closest point)", file,
+                            what));
+  cs.master_point = closest || s.mesh.dim == 2 ? contact::ContactSettings::MasterPoint::Closest
+                                               : contact::ContactSettings::MasterPoint::NormalCrossing;
   if (cs.friction < 0 || cs.gap_tolerance < 0 || cs.force_tolerance < 0 || !(cs.tangential_penalty > 0))
     throw Error(fmt::format("{}: {}: friction and tolerances must be >= 0, tangential_penalty > 0", file, what));
   // The slave body gives the stiffness scale.

@@ -1,5 +1,6 @@
 // Contact against a rigid plane: the blocks of (30) are the derivatives of the contact
 // residual (finite differences, states frozen), and the state machine's transitions.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -225,13 +226,20 @@ void expect_exact_directional_derivatives(ContactPair& pair, int step, int n_u, 
   }
 }
 
+// Both 3D master points (ContactSettings::MasterPoint).
+constexpr const char* kMasterPoints[] = {"normal-crossing", "closest"};
+
 // 3D: the block-on-block scene extruded along z (the slave 0.6 deep on a master 1 deep), P2
 // triangles on both sides, the traction rows weighted by the lumped mass (contact_pair.hpp).
-// The master moves by a random affine map, the slave randomly; directional differences, as
-// the column-wise check is slow in 3D.
-TEST(SurfaceContact, JacobianMatchesFiniteDifferencesIn3D) {
+// The master moves by a random affine map (it stays flat, so neither master point jumps
+// across its edges), the slave randomly; directional differences, as the column-wise check
+// is slow in 3D.
+class SurfaceContact3D : public testing::TestWithParam<const char*> {};
+
+TEST_P(SurfaceContact3D, JacobianMatchesFiniteDifferences) {
   std::string text = test::replaced(kBlockOnBlock, "h = 0.4\n", "h = 0.4\nthickness = 1.0\n");
-  text = test::replaced(text, "friction = 0.4\n", "friction = 0.4\nmass_weighted_rows = true\n");
+  text = test::replaced(text, "friction = 0.4\n",
+                        fmt::format("friction = 0.4\nmass_weighted_rows = true\nmaster_point = \"{}\"\n", GetParam()));
   text = test::replaced(text, "h = 0.3\n", "h = 0.3\nthickness = 0.6\n");
   auto s = scene::build_scene(text, "block-on-block-3d", ".");
   auto& pair = dynamic_cast<SurfaceContact&>(*s->contacts.at(0));
@@ -299,8 +307,9 @@ TEST(SurfaceContact, JacobianMatchesFiniteDifferencesWhereTheSlavePenetratesAKin
 // a crossing passes a master edge: on two sphere octants (thousands of points near edges)
 // a difference step straddled such a kink in one build and not in another (errors up to
 // 3.6e-6 relative at h = 1e-8). Away from edges the blocks are exact to round-off.
-TEST(SurfaceContact, JacobianMatchesFiniteDifferencesOnACurvedMasterIn3D) {
+TEST_P(SurfaceContact3D, JacobianMatchesFiniteDifferencesOnACurvedMaster) {
   std::string text = test::replaced(kBlockOnBlock, "h = 0.4\n", "h = 4.0\nthickness = 1.0\n");
+  text = test::replaced(text, "friction = 0.4\n", fmt::format("friction = 0.4\nmaster_point = \"{}\"\n", GetParam()));
   text = test::replaced(text, "h = 0.3\npoints = [0.0, 1.0, 1.0, 1.0, 1.0, 1.6, 0.0, 1.6]",
                         "h = 0.15\nthickness = 0.3\npoints = [0.2, 1.0, 0.8, 1.0, 0.8, 1.4, 0.2, 1.4]");
   auto s = scene::build_scene(text, "block-on-curved-block-3d", ".");
@@ -311,6 +320,11 @@ TEST(SurfaceContact, JacobianMatchesFiniteDifferencesOnACurvedMasterIn3D) {
   pair.begin_step(1, u0);
   expect_exact_directional_derivatives(pair, 1, s->space->n_dofs(), u, lambda);
 }
+
+INSTANTIATE_TEST_SUITE_P(MasterPoint, SurfaceContact3D, testing::ValuesIn(kMasterPoints),
+                         [](const testing::TestParamInfo<const char*>& info) {
+                           return std::string(info.param[0] == 'c' ? "Closest" : "NormalCrossing");
+                         });
 
 // At a converged state of the self-contact scene (level 0, the slot closed in step 5 of 6,
 // slightly perturbed): slave and master faces of one body, distant facets among the

@@ -3,6 +3,8 @@
 
 #include "common/error.hpp"
 #include "scene/scene.hpp"
+#include "builtin_scenes.hpp"
+#include "support/solve_scene.hpp"
 
 namespace stiction::scene {
 namespace {
@@ -67,6 +69,21 @@ TEST(Scene, WrongTypeAndBadChoice) {
   const std::string msg = error_of(bad);
   EXPECT_NE(msg.find("'rubbery'"), std::string::npos) << msg;
   EXPECT_NE(msg.find("neo-hookean"), std::string::npos) << msg;
+}
+
+// master_point picks the 3D master point; 2D surfaces and rigid planes have one rule only.
+TEST(Scene, MasterPointIsA3DSurfaceKey) {
+  const std::string cylinders = harness::builtin_scenes().at("hertz-cylinders-2d");
+  const std::string crossing_2d =
+      error_of(test::replaced(cylinders, "friction = 0.0", "friction = 0.0\nmaster_point = \"normal-crossing\""));
+  EXPECT_NE(crossing_2d.find("master_point 'normal-crossing' is 3D only"), std::string::npos) << crossing_2d;
+  EXPECT_EQ(error_of(test::replaced(cylinders, "friction = 0.0", "friction = 0.0\nmaster_point = \"closest\"")), "");
+  const std::string on_plane = error_of(test::replaced(harness::builtin_scenes().at("hertz-cylinder-2d"),
+                                                       "friction = 0.0", "friction = 0.0\nmaster_point = \"closest\""));
+  EXPECT_NE(on_plane.find("key 'master_point' does not apply to master 'plane'"), std::string::npos) << on_plane;
+  const std::string unknown = error_of(test::replaced(harness::builtin_scenes().at("hertz-spheres-3d"),
+                                                      "friction = 0.0", "friction = 0.0\nmaster_point = \"nearest\""));
+  EXPECT_NE(unknown.find("'nearest'"), std::string::npos) << unknown;
 }
 
 TEST(Scene, MissingRequiredKey) {
