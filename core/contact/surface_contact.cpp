@@ -6,7 +6,9 @@
 #include <boost/geometry.hpp>
 #include <boost/geometry/index/rtree.hpp>
 #include <cmath>
+#include <cstdint>
 #include <map>
+#include <unordered_map>
 
 #include "common/error.hpp"
 #include "fem/quadrature.hpp"
@@ -390,13 +392,33 @@ void add_node_kinematics(const FacetEvaluator<D>& ev, const Facet& f, const Poin
     }
 }
 
+// One slave facet's Jacobian entries, duplicates summed before they join the triplets: its
+// points repeat the same (row, column) pairs (the forces' variation: every master dof
+// against every unknown moving the master point, at each of the 36 points of a 3D facet).
+// Measured on hertz-spheres-3d level 2 (schur-amg): assembly 33.6 -> 29.7 s, peak memory
+// 3023 -> 2520 MB (level 1: 608 -> 447 MB).
+class MergedEntries {
+public:
+  void add(PetscInt r, PetscInt c, double v) {
+    sums_[(static_cast<std::uint64_t>(static_cast<std::uint32_t>(r)) << 32) | static_cast<std::uint32_t>(c)] += v;
+  }
+  void flush_into(nonlinear::SparseEntries& out) {
+    for (const auto& [key, v] : sums_)
+      out.add(static_cast<PetscInt>(key >> 32), static_cast<PetscInt>(key & 0xffffffffu), v);
+    sums_.clear();
+  }
+
+private:
+  std::unordered_map<std::uint64_t, double> sums_;
+};
+
 // The constraint forces of node i's multiplier lam at the point: the slave carries +lambda,
 // the master -lambda at the contact point (r_u -= B_int^T lambda - B_ext^T lambda), with the
 // blocks -B^T (columns row0..) when jacobian is not null. The forces' variation with the
 // master point is added once per point (add_force_variation).
 template <int D>
 void add_node_forces(const FacetEvaluator<D>& ev, const Facet& f, const PointKinematics<D>& p, double wphi,
-                     const Vec3& lam, PetscInt row0, std::vector<double>& r_u, nonlinear::SparseEntries* jacobian) {
+                     const Vec3& lam, PetscInt row0, std::vector<double>& r_u, MergedEntries* jacobian) {
   for (int a = 0; a < ev.n(); ++a)
     for (int c = 0; c < D; ++c) {
       const PetscInt slave_dof = static_cast<PetscInt>(f.nodes[a]) * D + c;
@@ -420,7 +442,7 @@ void add_node_forces(const FacetEvaluator<D>& ev, const Facet& f, const PointKin
 // a third of the entries in 3D (where it was most of the contact Jacobian's entries).
 template <int D>
 void add_force_variation(const FacetEvaluator<D>& ev, const PointKinematics<D>& p, const Vec3& lam_w,
-                         nonlinear::SparseEntries& jacobian) {
+                         MergedEntries& jacobian) {
   for (size_t bi = 0; bi < p.branches.size(); ++bi) {
     const Branch<D>& b = p.branches[bi];
     const double dw_sign = bi == 0 ? 1.0 : -1.0;  // d w_1 = -d w_0
@@ -563,6 +585,7 @@ void SurfaceContact::kinematics(const std::vector<double>& u, const double* lamb
   const MasterTree<D> tree(boxes.begin(), boxes.end());
 
   std::vector<std::pair<Box<D>, int>> hits;
+  MergedEntries facet_entries;
   for (const Facet& f : slave_facets_) {
     MasterCandidates<D> candidates{&tree, &master_facets_, {},
                                    settings_.master_point == ContactSettings::MasterPoint::Closest};
@@ -592,10 +615,12 @@ void SurfaceContact::kinematics(const std::vector<double>& u, const double* lamb
         if (lambda)
           for (int c = 0; c < D; ++c) lam[c] = lambda[D * i + c];
         lam_w += wphi * lam;
-        add_node_forces<D>(ev, f, p, wphi, lam, offset + static_cast<PetscInt>(i) * D, *r_u, jacobian);
+        add_node_forces<D>(ev, f, p, wphi, lam, offset + static_cast<PetscInt>(i) * D, *r_u,
+                           jacobian ? &facet_entries : nullptr);
       }
-      if (r_u && jacobian) add_force_variation<D>(ev, p, lam_w, *jacobian);
+      if (r_u && jacobian) add_force_variation<D>(ev, p, lam_w, facet_entries);
     }
+    if (jacobian) facet_entries.flush_into(*jacobian);
   }
   for (int i = 0; i < slave_.n_nodes(); ++i) nodes[i].admissible = covered[i] > 0;
 }
