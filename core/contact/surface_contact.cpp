@@ -218,8 +218,9 @@ struct MasterCandidates {
 // The valid master points of slave point s (farther than the search radius, off the facet
 // or on the master's back: not valid). 2D: closest-point projections on every listed
 // candidate (the blend looks for a partner of the closest). 3D: crossings of the slave
-// normal on the kNearestMasterFacets nearest boxes, stopping at the first box farther than
-// the nearest crossing found, which no facet inside it can beat.
+// normal (or closest points, master_point) on the kNearestMasterFacets nearest boxes,
+// stopping at the first box farther than the nearest point found, which no facet inside it
+// can beat.
 template <int D>
 std::vector<Branch<D>> valid_projections(const FacetEvaluator<D>& ev, const Facet& f, const FacetPoint<D>& s,
                                          const MasterCandidates<D>& candidates, const std::vector<double>& u,
@@ -291,8 +292,9 @@ void blend(std::vector<Branch<2>>& out, bool with_derivatives, std::map<PetscInt
 // 20 iterations without a state change (and converged in 8 with threaded BLAS); a finite
 // difference check of a penetrated level-0 state found errors of 1% in the master rows.
 // In 3D the blend would need weights over the two or more facets around an edge or vertex
-// and cuts along projected edges; the master point is instead where the slave normal
-// through s crosses the master, which is continuous across master edges (surface_contact.hpp).
+// and cuts along projected edges; the master point is instead, by default, where the slave
+// normal through s crosses the master, which is continuous across master edges, or with
+// master_point = "closest" the closest point without a blend (surface_contact.hpp).
 // dw0 receives d w_0 / du (w_1 = 1 - w_0) when derivatives are asked.
 template <int D>
 std::vector<Branch<D>> contact_point(const FacetEvaluator<D>& ev, const Facet& f, const FacetPoint<D>& s,
