@@ -188,47 +188,6 @@ bool inside(const Eigen::Matrix<double, P, 1>& eta, double tol) {
   return eta.minCoeff() >= -tol && eta.sum() <= 1 + tol;
 }
 
-}  // namespace detail
-
-// Closest point of x on segment m (2D): Newton on F(eta) = (x - y(eta)) . y'(eta) from the
-// midpoint; where it leaves [0, 1] the point is clamped to the nearer end (a vertex, where
-// eta does not move: sensitivity 0). Not found when the distance has no minimum along the
-// segment there (F' >= 0).
-// Converged when the step falls below 1e-10, then two more (quadratic) steps to round-off.
-// A tighter test alone fails for distant points, whose F carries round-off of order
-// 1e-16 |x - y| |y'|: measured on self-contact-2d, thousands of projections per evaluation
-// stopped short of 1e-15 and, taken for clamped, lost their d eta / du.
-inline Projection<2> project(const FacetEvaluator<2>& ev, const SurfaceFacet& m, const Geometry<2>::Vec& x,
-                             const std::vector<double>& u) {
-  using Param = Geometry<2>::Param;
-  // F' = -|y'|^2 + (x - y) . y''.
-  auto slope = [&x](const FacetPoint<2>& y) { return -y.dx.squaredNorm() + (x - y.x).dot(y.ddx[0]); };
-  Projection<2> p;
-  double eta = 0.5;
-  bool converged = false;
-  for (int it = 0, polish = 0; it < 30; ++it) {
-    const FacetPoint<2> y = ev.at(m, Param(eta), u);
-    const double F = (x - y.x).dot(y.dx.col(0)), F_eta = slope(y);
-    if (!(F_eta < 0)) return p;  // not a minimum of the distance along the segment
-    const double step = F / F_eta;
-    eta -= step;
-    if (eta < -0.5 || eta > 1.5) break;  // far off this segment: clamp below
-    if (std::abs(step) < 1e-10 && ++polish > 2) {
-      converged = true;
-      break;
-    }
-  }
-  p.found = true;
-  p.interior = converged && eta >= 0 && eta <= 1;
-  p.eta = Param(std::clamp(eta, 0.0, 1.0));
-  p.y = ev.at(m, p.eta, u);
-  p.distance = (x - p.y.x).norm();
-  if (p.interior) p.sensitivity(0, 0) = -1 / slope(p.y);
-  return p;
-}
-
-namespace detail {
-
 // H of the projection equation at y (see Projection).
 template <int D>
 typename Geometry<D>::ParamMatrix projection_hessian(const typename Geometry<D>::Vec& x, const FacetPoint<D>& y) {
@@ -241,45 +200,70 @@ typename Geometry<D>::ParamMatrix projection_hessian(const typename Geometry<D>:
 
 enum class FaceNewton { Converged, Left, NoMinimum };
 
-// Newton on V^T F(origin + V t) = 0 (the closest point of x on one face of a triangle: its
-// interior, V = I, or an edge, V its direction), from t. Left: the iterate went far off the
-// triangle; NoMinimum: -V^T H V is not positive definite there (the distance has no minimum
-// along the face). The same convergence test as the segment's project (2D) below.
-template <int K>
-FaceNewton face_newton(const FacetEvaluator<3>& ev, const SurfaceFacet& m, const Geometry<3>::Vec& x,
-                       const std::vector<double>& u, const Geometry<3>::Param& origin,
-                       const Eigen::Matrix<double, 2, K>& V, Eigen::Matrix<double, K, 1>& t) {
+// Newton on V^T F(origin + V t) = 0, the closest point of x on one face of a facet: the
+// segment or triangle itself (V = I) or a triangle's edge (V its direction), from t.
+// Left: the iterate went far off the facet (or did not converge); NoMinimum: -V^T H V is not
+// positive definite there (the distance has no minimum along the face).
+// Converged when the step falls below 1e-10, then two more (quadratic) steps to round-off.
+// A tighter test alone fails for distant points, whose F carries round-off of order
+// 1e-16 |x - y| |y'|: measured on self-contact-2d, thousands of projections per evaluation
+// stopped short of 1e-15 and, taken for clamped, lost their d eta / du.
+template <int D, int K>
+FaceNewton face_newton(const FacetEvaluator<D>& ev, const SurfaceFacet& m, const typename Geometry<D>::Vec& x,
+                       const std::vector<double>& u, const typename Geometry<D>::Param& origin,
+                       const Eigen::Matrix<double, D - 1, K>& V, Eigen::Matrix<double, K, 1>& t) {
+  using Param = typename Geometry<D>::Param;
   for (int it = 0, polish = 0; it < 30; ++it) {
-    const FacetPoint<3> y = ev.at(m, origin + V * t, u);
-    const Eigen::Matrix<double, K, K> HV = V.transpose() * projection_hessian<3>(x, y) * V;
-    if (Eigen::LLT<Eigen::Matrix<double, K, K>>(-HV).info() != Eigen::Success) return FaceNewton::NoMinimum;
-    const Eigen::Matrix<double, K, 1> step = HV.ldlt().solve(V.transpose() * (y.dx.transpose() * (x - y.x)));
+    const FacetPoint<D> y = ev.at(m, Param(origin + V * t), u);
+    const Eigen::Matrix<double, K, K> HV = V.transpose() * projection_hessian<D>(x, y) * V;
+    if (!HV.allFinite() || Eigen::LLT<Eigen::Matrix<double, K, K>>(-HV).info() != Eigen::Success)
+      return FaceNewton::NoMinimum;
+    const Eigen::Matrix<double, K, 1> F = V.transpose() * (y.dx.transpose() * (x - y.x));
+    Eigen::Matrix<double, K, 1> step;
+    if constexpr (K == 1) step = F / HV(0, 0);  // (LDLT's pivoting on 1 x 1 trips -Warray-bounds)
+    else step = HV.ldlt().solve(F);
     t -= step;
-    if (!inside<2>(Geometry<3>::Param(origin + V * t), 0.5)) return FaceNewton::Left;
+    if (!inside<D - 1>(Param(origin + V * t), 0.5)) return FaceNewton::Left;
     if (step.norm() < 1e-10 && ++polish > 2) return FaceNewton::Converged;
   }
   return FaceNewton::Left;
 }
 
-// The projection at eta on the face spanned by V (2 x K, K = 0 at a vertex).
-template <int K>
-Projection<3> closest_on_face(const FacetEvaluator<3>& ev, const SurfaceFacet& m, const Geometry<3>::Vec& x,
-                              const std::vector<double>& u, const Geometry<3>::Param& eta,
-                              const Eigen::Matrix<double, 2, K>& V) {
-  Projection<3> p;
+// The projection at eta on the face spanned by V ((D - 1) x K; K = 0 at a vertex, where eta
+// does not move).
+template <int D, int K>
+Projection<D> closest_on_face(const FacetEvaluator<D>& ev, const SurfaceFacet& m, const typename Geometry<D>::Vec& x,
+                              const std::vector<double>& u, const typename Geometry<D>::Param& eta,
+                              const Eigen::Matrix<double, D - 1, K>& V) {
+  Projection<D> p;
   p.found = true;
-  p.interior = K == 2;
+  p.interior = K == D - 1;
   p.eta = eta;
   p.y = ev.at(m, eta, u);
   p.distance = (x - p.y.x).norm();
   if constexpr (K > 0) {
-    const Eigen::Matrix<double, K, K> HV = V.transpose() * projection_hessian<3>(x, p.y) * V;
+    const Eigen::Matrix<double, K, K> HV = V.transpose() * projection_hessian<D>(x, p.y) * V;
     p.sensitivity = -V * HV.inverse() * V.transpose();
   }
   return p;
 }
 
 }  // namespace detail
+
+// Closest point of x on segment m (2D): Newton from the midpoint; where it converges outside
+// [0, 1] or leaves the segment the point is clamped to the nearer end (a vertex). Not found
+// when the distance has no minimum along the segment there.
+inline Projection<2> project(const FacetEvaluator<2>& ev, const SurfaceFacet& m, const Geometry<2>::Vec& x,
+                             const std::vector<double>& u) {
+  using Param = Geometry<2>::Param;
+  const Eigen::Matrix<double, 1, 1> I = Eigen::Matrix<double, 1, 1>::Identity();
+  Param t(0.5);
+  const auto result = detail::face_newton<2, 1>(ev, m, x, u, Param::Zero(), I, t);
+  if (result == detail::FaceNewton::NoMinimum) return {};
+  if (result == detail::FaceNewton::Converged && detail::inside<1>(t, 0))
+    return detail::closest_on_face<2, 1>(ev, m, x, u, t, I);
+  return detail::closest_on_face<2, 0>(ev, m, x, u, Param(std::clamp(t[0], 0.0, 1.0)), Eigen::Matrix<double, 1, 0>());
+}
 
 // Closest point of x on triangle m (3D, choice of master_point = "closest"): Newton inside
 // the triangle from its centroid; where that converges outside or leaves it, the closest
@@ -289,25 +273,25 @@ Projection<3> closest_on_face(const FacetEvaluator<3>& ev, const SurfaceFacet& m
 inline Projection<3> project(const FacetEvaluator<3>& ev, const SurfaceFacet& m, const Geometry<3>::Vec& x,
                              const std::vector<double>& u) {
   using Param = Geometry<3>::Param;
+  using Edge = Eigen::Matrix<double, 2, 1>;
   Param t = Param::Constant(1.0 / 3);
-  const auto inner = detail::face_newton<2>(ev, m, x, u, Param::Zero(), Eigen::Matrix2d::Identity(), t);
+  const auto inner = detail::face_newton<3, 2>(ev, m, x, u, Param::Zero(), Eigen::Matrix2d::Identity(), t);
   if (inner == detail::FaceNewton::NoMinimum) return {};
   if (inner == detail::FaceNewton::Converged && detail::inside<2>(t, 0))
-    return detail::closest_on_face<2>(ev, m, x, u, t, Eigen::Matrix2d::Identity());
+    return detail::closest_on_face<3, 2>(ev, m, x, u, t, Eigen::Matrix2d::Identity());
   const Param corner[3] = {Param(0, 0), Param(1, 0), Param(0, 1)};
   Projection<3> best;
   for (int e = 0; e < 3; ++e) {
-    const Param a = corner[e], direction = corner[(e + 1) % 3] - a;
+    const Param a = corner[e];
+    const Edge direction = corner[(e + 1) % 3] - a;
     Eigen::Matrix<double, 1, 1> s(0.5);
-    const auto along = detail::face_newton<1>(ev, m, x, u, a, Eigen::Matrix<double, 2, 1>(direction), s);
+    const auto along = detail::face_newton<3, 1>(ev, m, x, u, a, direction, s);
     if (along == detail::FaceNewton::NoMinimum) continue;
-    Projection<3> p;
-    if (along == detail::FaceNewton::Converged && s[0] >= 0 && s[0] <= 1)
-      p = detail::closest_on_face<1>(ev, m, x, u, Param(a + direction * s[0]),
-                                     Eigen::Matrix<double, 2, 1>(direction));
-    else  // clamped to the nearer end vertex
-      p = detail::closest_on_face<0>(ev, m, x, u, Param(a + direction * std::clamp(s[0], 0.0, 1.0)),
-                                     Eigen::Matrix<double, 2, 0>());
+    const Projection<3> p =
+        along == detail::FaceNewton::Converged && s[0] >= 0 && s[0] <= 1
+            ? detail::closest_on_face<3, 1>(ev, m, x, u, Param(a + direction * s[0]), direction)
+            : detail::closest_on_face<3, 0>(ev, m, x, u, Param(a + direction * std::clamp(s[0], 0.0, 1.0)),
+                                            Eigen::Matrix<double, 2, 0>());  // the nearer end vertex
     if (!best.found || p.distance < best.distance) best = p;
   }
   return best;

@@ -16,7 +16,17 @@
 namespace stiction::test {
 namespace {
 
-const char* kBallUnderBlock = R"toml([scene]
+const char* kBallUnderBlock = R"toml(# Root keys first: the supports as an inline array of tables.
+dirichlet = [
+  { body = "ball", boundary = "base", components = ["y"], value = [0.0] },
+  { body = "ball", boundary = "symmetry-x", components = ["x"], value = [0.0] },
+  { body = "ball", boundary = "symmetry-z", components = ["z"], value = [0.0] },
+  { body = "block", boundary = "ymax", components = ["y"], value = [-0.01] },
+  { body = "block", boundary = "xmin", components = ["x"], value = [0.0] },
+  { body = "block", boundary = "zmin", components = ["z"], value = [0.0] },
+]
+
+[scene]
 name = "ball-under-block-3d"
 description = "a sphere octant pressed into the flat bottom of a block (the block is the master)"
 
@@ -44,42 +54,6 @@ material = "soft"
 generator = "box"
 size = [0.4, 0.2, 0.4]
 h = 0.05
-
-[[dirichlet]]
-body = "ball"
-boundary = "base"
-components = ["y"]
-value = [0.0]
-
-[[dirichlet]]
-body = "ball"
-boundary = "symmetry-x"
-components = ["x"]
-value = [0.0]
-
-[[dirichlet]]
-body = "ball"
-boundary = "symmetry-z"
-components = ["z"]
-value = [0.0]
-
-[[dirichlet]]
-body = "block"
-boundary = "ymax"
-components = ["y"]
-value = [-0.01]
-
-[[dirichlet]]
-body = "block"
-boundary = "xmin"
-components = ["x"]
-value = [0.0]
-
-[[dirichlet]]
-body = "block"
-boundary = "zmin"
-components = ["z"]
-value = [0.0]
 
 [[contact]]
 name = "interface"

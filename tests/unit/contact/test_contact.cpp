@@ -323,7 +323,7 @@ TEST_P(SurfaceContact3D, JacobianMatchesFiniteDifferencesOnACurvedMaster) {
 
 INSTANTIATE_TEST_SUITE_P(MasterPoint, SurfaceContact3D, testing::ValuesIn(kMasterPoints),
                          [](const testing::TestParamInfo<const char*>& info) {
-                           return std::string(info.param[0] == 'c' ? "Closest" : "NormalCrossing");
+                           return std::string(info.param) == "closest" ? "Closest" : "NormalCrossing";
                          });
 
 // At a converged state of the self-contact scene (level 0, the slot closed in step 5 of 6,

@@ -15,7 +15,8 @@ namespace {
 using Vec = facets::Geometry<3>::Vec;
 using Param = facets::Geometry<3>::Param;
 
-// The reference triangle (0,0,0), (1,0,0), (0,1,0); node displacements u (n_nodes x 3).
+// The reference triangle (0,0,0), (1,0,0), (0,1,0) with n_nodes nodes (3: P1, 6: P2); the
+// tests pass their displacements (n_nodes x 3) to the evaluator.
 SurfaceFacet unit_triangle(int n_nodes) {
   SurfaceFacet f;
   f.n_vertices = 3;
