@@ -189,6 +189,7 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
     std::vector<std::string> argv{exe, "solve", run.scene, "--level", std::to_string(run.level), "--solver", run.solver,
                                   "--out", run_dir, "--quiet", "--no-vtu", "--metrics", run_dir + "/metrics.toml"};
     if (!o.forcing.empty()) argv.insert(argv.end(), {"--forcing", o.forcing});
+    if (o.quick) argv.push_back("--quick");
     for (size_t k = 0; k < o.petsc_options.size(); ++k)
       if (o.petsc_options[k].rfind("-" + solvers::options_prefix(run.solver), 0) == 0) {
         std::istringstream words(o.petsc_options[k]);

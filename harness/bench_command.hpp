@@ -17,6 +17,7 @@ struct BenchOptions {
   std::vector<int> levels{0};
   std::string out_dir = "reports/bench";
   bool resume = false;
+  bool quick = false;                // each scene's short version (its load.quick_until)
   double time_limit_seconds = 3600;
   double memory_limit_mb = 0;        // 0: 90% of the machine's memory
   std::vector<std::string> petsc_options;  // "-prefix_key value" pairs, forwarded by prefix

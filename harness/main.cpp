@@ -103,6 +103,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"fixed", "eisenstat-walker"}));
   bool no_vtu = false;
   solve_cmd->add_flag("--no-vtu", no_vtu, "do not write VTU/PVD output");
+  solve_cmd->add_option("--until", solve.until, "stop after the load step that reaches this pseudo-time")
+      ->check(CLI::NonNegativeNumber);
+  solve_cmd->add_flag("--quick", solve.quick, "the scene's short version: stop at its load.quick_until");
   harness::ReplayOptions replay;
   auto* replay_cmd = app.add_subcommand("replay", "solve recorded Newton systems with a backend");
   replay_cmd->add_option("record", replay.record_dir, "folder written by `stiction solve --record`")->required();
@@ -120,6 +123,7 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--levels", bench.levels, "mesh levels (comma separated; default 0)")->delimiter(',');
   bench_cmd->add_option("--out", bench.out_dir, "output directory (runs.csv, steps.csv, report.md, runs/)");
   bench_cmd->add_flag("--resume", bench.resume, "continue a sweep: skip the runs already in runs.csv");
+  bench_cmd->add_flag("--quick", bench.quick, "every scene's short version (stiction solve --quick)");
   bench_cmd->add_option("--time-limit", bench.time_limit_seconds, "wall-time limit per run, seconds (default 3600)");
   bench_cmd->add_option("--memory-limit-mb", bench.memory_limit_mb, "resident-memory limit per run (default 90% of RAM)");
   bench_cmd->add_option("--forcing", bench.forcing, "Newton forcing for every run: fixed or eisenstat-walker")

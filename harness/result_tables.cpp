@@ -23,7 +23,9 @@ std::vector<std::pair<std::string, std::string>> traction_columns(const scene::S
 StepTable::StepTable(const std::string& path, const std::string& header_comment, const scene::Scene& s) : out_(path) {
   if (!out_) throw Error(fmt::format("cannot write '{}'", path));
   out_ << header_comment;
-  out_ << "step,converged,reason,newton_iterations,initial_residual,reference_residual,final_residual,"
+  // One row per load increment: `time` is the pseudo-time it ends at, `cut` how many times
+  // its step's increment was halved, `retried` marks a failed attempt retried over half of it.
+  out_ << "step,time,cut,retried,converged,reason,newton_iterations,initial_residual,reference_residual,final_residual,"
           "krylov_iterations,assembly_seconds,setup_seconds,solve_seconds,wall_seconds";
   // Forces on each Dirichlet boundary: nodal reactions (the paper's F2), then the
   // integral of the traction P N on each Dirichlet boundary (F1) and contact surface
@@ -52,7 +54,8 @@ void StepTable::add(const nonlinear::StepResult& r, const scene::Scene& s) {
     setup += it.linear.setup_seconds;
     solve += it.linear.solve_seconds;
   }
-  out_ << fmt::format("{},{},{},{},{:.6e},{:.6e},{:.6e},{},{:.4f},{:.4f},{:.4f},{:.4f}", r.step, r.converged() ? 1 : 0,
+  out_ << fmt::format("{},{:.10g},{},{},{},{},{},{:.6e},{:.6e},{:.6e},{},{:.4f},{:.4f},{:.4f},{:.4f}", r.step, r.time,
+                      r.cut, r.retried ? 1 : 0, r.converged() ? 1 : 0,
                       nonlinear::to_string(r.reason), r.iterations.size(), r.initial_residual, r.reference_residual,
                       r.final_residual, krylov, assembly, setup, solve, r.wall_seconds);
   for (const auto& bc : s.problem.dirichlet) {
@@ -89,7 +92,7 @@ IterationTable::IterationTable(const std::string& path, const std::string& heade
   out_ << header_comment;
   // residual: the free residual after the update; the linear columns describe the solve
   // that produced the update.
-  out_ << "step,iteration,residual,step_length,krylov_iterations,linear_reason,linear_relative_residual,"
+  out_ << "step,time,iteration,residual,step_length,krylov_iterations,linear_reason,linear_relative_residual,"
           "assembly_seconds,setup_seconds,solve_seconds";
   if (contact_) out_ << ",constraint_residual,state_changes";
   out_ << "\n";
@@ -101,7 +104,7 @@ void IterationTable::add(const nonlinear::StepResult& r) {
     const auto& it = r.iterations[k];
     const double relative =
         it.linear.initial_residual > 0 ? it.linear.final_residual / it.linear.initial_residual : 0.0;
-    out_ << fmt::format("{},{},{:.6e},{:g},{},{},{:.3e},{:.4f},{:.4f},{:.4f}", r.step, k + 1, it.residual,
+    out_ << fmt::format("{},{:.10g},{},{:.6e},{:g},{},{},{:.3e},{:.4f},{:.4f},{:.4f}", r.step, r.time, k + 1, it.residual,
                         it.step_length, it.linear.iterations, it.linear.reason, relative, it.assembly_seconds,
                         it.linear.setup_seconds, it.linear.solve_seconds);
     if (contact_) out_ << fmt::format(",{:.6e},{}", it.constraint_residual, it.state_changes);

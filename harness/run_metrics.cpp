@@ -30,11 +30,15 @@ void write_metrics(const std::string& path, const scene::Scene& scene, const Run
   toml::array step_rows, solve_rows;
   long newton = 0, solves = 0, krylov = 0;
   double assembly = 0, setup = 0, solve = 0;
-  int completed = 0;
+  int completed = 0, cuts = 0;
   for (const auto& s : steps) {
-    completed += s.converged() ? 1 : 0;
+    completed += s.completes_step ? 1 : 0;
+    cuts += s.retried ? 1 : 0;
     newton += static_cast<long>(s.iterations.size());
     step_rows.push_back(toml::table{{"step", s.step},
+                                    {"time", s.time},
+                                    {"cut", s.cut},
+                                    {"retried", s.retried},
                                     {"converged", s.converged()},
                                     {"reason", nonlinear::to_string(s.reason)},
                                     {"newton_iterations", static_cast<int64_t>(s.iterations.size())},
@@ -75,8 +79,9 @@ void write_metrics(const std::string& path, const scene::Scene& scene, const Run
                   {"converged", summary.converged},
                   {"reason", summary.reason},
                   {"detail", summary.detail},
-                  {"load_steps", scene.problem.n_steps},
+                  {"load_steps", scene.problem.n_steps()},
                   {"load_steps_completed", completed},
+                  {"load_increments_retried", cuts},
                   {"newton_iterations", newton},
                   {"linear_solves", solves},
                   {"krylov_iterations", krylov},

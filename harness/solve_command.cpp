@@ -6,6 +6,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "builtin_scenes.hpp"
 #include "common/error.hpp"
@@ -58,19 +59,24 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
       record_system(o.record_dir, sys, du, stats, step, iteration, context);
     });
   }
+  double until = o.until >= 0 ? o.until : std::numeric_limits<double>::infinity();
+  if (o.quick) until = std::min(until, scene->quick_until);
+  const int last_step = scene->problem.step_reaching(until);
   auto results = newton.run([&](const nonlinear::StepResult& r) {
     if (table) table->add(r, *scene);
     if (iteration_table) iteration_table->add(r);
-    if (scene->output.vtu && o.write_vtu && r.converged()) {
+    if (scene->output.vtu && o.write_vtu && r.completes_step) {
       const std::string name = fmt::format("step-{:03d}.vtu", r.step);
       write_vtu(out_dir + "/" + name, *scene, newton.displacement());
-      pvd.add(r.step, name);
+      pvd.add(r.time, name);
     }
     if (!o.quiet)
-      fmt::print(stderr, "step {}/{}: {} after {} Newton iterations, residual {:.3e} (reference {:.3e}), {:.2f} s\n",
-                 r.step, scene->problem.n_steps, nonlinear::to_string(r.reason), r.iterations.size(),
-                 r.final_residual, r.reference_residual, r.wall_seconds);
-  });
+      fmt::print(stderr, "step {}/{}{}: t = {:.6g}, {} after {} Newton iterations, residual {:.3e} (reference {:.3e}), "
+                 "{:.2f} s{}\n",
+                 r.step, scene->problem.n_steps(), r.cut > 0 ? fmt::format(" (increment / {})", 1 << r.cut) : "",
+                 r.time, nonlinear::to_string(r.reason), r.iterations.size(), r.final_residual, r.reference_residual,
+                 r.wall_seconds, r.retried ? "; retried over half the increment" : "");
+  }, 1, last_step);
   {
     std::ofstream desc(out_dir + "/solver.txt");
     desc << solver->describe();

@@ -16,6 +16,8 @@ struct SolveOptions {
   std::string record_dir;        // record every Newton system here (optional)
   bool write_vtu = true;         // --no-vtu turns the scene's VTU output off (sweeps)
   std::string forcing;           // overrides the scene's [newton] forcing when set
+  double until = -1;             // stop after the load step that reaches this pseudo-time (< 0: the end)
+  bool quick = false;            // stop at the scene's quick_until (the suite's short version)
   std::string petsc_options;     // the PETSc options given on the command line, for reports
   bool quiet = false;
 };

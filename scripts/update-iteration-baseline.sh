@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Rewrites tests/regression/iterations.csv from a fresh level-0 sweep of every built-in
+# Rewrites tests/regression/iterations.csv from a fresh level-0 sweep (short versions, --quick) of every built-in
 # scene and backend. Run it on purpose (a change that lowers counts, a new scene or
 # backend), review the diff, and commit it with the reason in the message.
 set -euo pipefail
@@ -7,7 +7,7 @@ build=${1:-build}
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-"$build/stiction" bench --levels 0 --out "$tmp/sweep" >&2
+"$build/stiction" bench --levels 0 --quick --out "$tmp/sweep" >&2
 out=tests/regression/iterations.csv
 {
   echo "# Newton and total Krylov iterations per (scene, backend) at mesh level 0, guarded by"

@@ -17,20 +17,47 @@ ContactPair::ContactPair(std::string name, const fem::FieldSpace& space, int sla
   last_dlambda_t_.assign(slave_.n_nodes(), Vec3::Zero());
   normals_.assign(slave_.n_nodes(), Vec3::Zero());
   r_t_.resize(slave_.n_nodes());
-  for (int i = 0; i < slave_.n_nodes(); ++i)
-    r_t_[i] = settings_.tangential_penalty * settings_.modulus / (slave_.local_size(i) * slave_.lumped_mass[i]);
+  for (int i = 0; i < slave_.n_nodes(); ++i) r_t_[i] = initial_r_t(i);
   u_previous_.assign(space.n_dofs(), 0.0);
 }
 
-void ContactPair::begin_step(int step, const std::vector<double>& u) {
+// The adaptive r_t (Sec. 4.4) starts every increment from its initial value, with no
+// previous correction to compare with (choice: the paper says neither whether the adaptation
+// carries over nor how far it may go). Carried over, it drifted without bound on ironing-2d
+// level 0: by t = 1.045, after 9 sliding steps, r_t ranged over 1e-17 .. 1.6e5 times its
+// initial value among the slipping nodes, and the sliding steps stalled (25 iterations,
+// then down to 1/64 of a step, DIVERGED_MAX_ITERATIONS at t = 1.057).
+void ContactPair::begin_increment(double t_start, const std::vector<double>& u) {
   u_previous_ = u;
-  previous_step_ = step - 1;
+  t_previous_ = t_start;
+  for (int i = 0; i < slave_.n_nodes(); ++i) r_t_[i] = initial_r_t(i);
+  std::fill(last_dlambda_t_.begin(), last_dlambda_t_.end(), Vec3::Zero());
 }
 
-void ContactPair::evaluate(int step, const std::vector<double>& u, const double* lambda, std::vector<double>& r_u,
+double ContactPair::initial_r_t(int i) const {
+  return settings_.tangential_penalty * settings_.modulus / (slave_.local_size(i) * slave_.lumped_mass[i]);
+}
+
+// The states, one entry per node (r_t restarts with every increment).
+std::vector<double> ContactPair::save_state() const {
+  std::vector<double> out;
+  for (NodeState s : state_) out.push_back(static_cast<double>(s));
+  return out;
+}
+
+void ContactPair::restore_state(const std::vector<double>& saved) {
+  const size_t n = state_.size();
+  if (saved.size() != n)
+    throw Error(fmt::format("contact '{}': a saved state of {} entries does not fit its {} slave nodes", name_,
+                            saved.size(), n));
+  for (size_t i = 0; i < n; ++i) state_[i] = static_cast<NodeState>(static_cast<int>(saved[i]));
+  settled_ = false;
+}
+
+void ContactPair::evaluate(double t, const std::vector<double>& u, const double* lambda, std::vector<double>& r_u,
                            double* r_c, nonlinear::SparseEntries* jacobian, PetscInt offset) const {
   std::vector<NodeKinematics> nodes;
-  compute_kinematics(step, u, lambda, &r_u, jacobian, offset, jacobian != nullptr, nodes);
+  compute_kinematics(t, u, lambda, &r_u, jacobian, offset, jacobian != nullptr, nodes);
   const int d = dim_;
   for (int i = 0; i < slave_.n_nodes(); ++i) {
     const NodeKinematics& k = nodes[i];
@@ -64,9 +91,9 @@ void ContactPair::evaluate(int step, const std::vector<double>& u, const double*
   }
 }
 
-int ContactPair::update_states(int step, const std::vector<double>& u, const double* lambda, const double* dlambda) {
+int ContactPair::update_states(double t, const std::vector<double>& u, const double* lambda, const double* dlambda) {
   std::vector<NodeKinematics> nodes;
-  compute_kinematics(step, u, nullptr, nullptr, nullptr, 0, false, nodes);
+  compute_kinematics(t, u, nullptr, nullptr, nullptr, 0, false, nodes);
   const double entry = entry_depth(nodes);
   const int d = dim_;
   int changes = 0;
@@ -91,13 +118,24 @@ int ContactPair::update_states(int step, const std::vector<double>& u, const dou
     if (next != state_[i]) ++changes;
     state_[i] = next;
   }
-  // Settled: no state changed, and the update moved the multipliers by at most
-  // settle_tolerance relative to them (Newton is then close, where the normals' terms buy
-  // the quadratic rate; far from it they of order p / h disturb Newton and Krylov alike).
-  double step2 = 0, size2 = 0;
-  for (int k = 0; k < slave_.n_nodes() * d; ++k) step2 += dlambda[k] * dlambda[k], size2 += lambda[k] * lambda[k];
-  settled_ = changes == 0 && step2 <= settings_.settle_tolerance * settings_.settle_tolerance * size2;
+  settled_ = changes == 0 && multipliers_settled(lambda, dlambda);
   return changes;
+}
+
+// Settled: no state changed, and the update moved the multipliers by at most
+// settle_tolerance relative to them (Newton is then close, where the normals' terms buy
+// the quadratic rate; far from it they of order p / h disturb Newton and Krylov alike).
+// Held states count as unchanged: without this, the iterations the driver holds the states
+// for converged only linearly (ironing-2d level 0, sliding: constraint residual falling
+// 2.5x per iteration over five iterations until an update let the normals in).
+bool ContactPair::multipliers_settled(const double* lambda, const double* dlambda) const {
+  double step2 = 0, size2 = 0;
+  for (int k = 0; k < slave_.n_nodes() * dim_; ++k) step2 += dlambda[k] * dlambda[k], size2 += lambda[k] * lambda[k];
+  return step2 <= settings_.settle_tolerance * settings_.settle_tolerance * size2;
+}
+
+void ContactPair::states_held(const double* lambda, const double* dlambda) {
+  settled_ = multipliers_settled(lambda, dlambda);
 }
 
 // Entering contact (choice): an inactive node enters contact only if it is penetrated at least
@@ -127,9 +165,9 @@ double ContactPair::entry_depth(const std::vector<NodeKinematics>& nodes) const 
   return fraction * deepest;
 }
 
-std::vector<double> ContactPair::mean_normal_gaps(int step, const std::vector<double>& u) const {
+std::vector<double> ContactPair::mean_normal_gaps(double t, const std::vector<double>& u) const {
   std::vector<NodeKinematics> nodes;
-  compute_kinematics(step, u, nullptr, nullptr, nullptr, 0, false, nodes);
+  compute_kinematics(t, u, nullptr, nullptr, nullptr, 0, false, nodes);
   std::vector<double> gaps(nodes.size());
   for (size_t i = 0; i < nodes.size(); ++i)
     gaps[i] = nodes[i].admissible ? nodes[i].n.dot(nodes[i].G) / slave_.lumped_mass[i]

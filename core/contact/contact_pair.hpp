@@ -81,19 +81,22 @@ public:
 
   std::string name() const override { return name_; }
   int n_multipliers() const override { return slave_.n_nodes() * dim_; }
-  void begin_step(int step, const std::vector<double>& u) override;
-  void evaluate(int step, const std::vector<double>& u, const double* lambda, std::vector<double>& r_u, double* r_c,
+  void begin_increment(double t_start, const std::vector<double>& u) override;
+  void evaluate(double t, const std::vector<double>& u, const double* lambda, std::vector<double>& r_u, double* r_c,
                 nonlinear::SparseEntries* jacobian, PetscInt offset) const override;
-  int update_states(int step, const std::vector<double>& u, const double* lambda, const double* dlambda) override;
+  int update_states(double t, const std::vector<double>& u, const double* lambda, const double* dlambda) override;
+  void states_held(const double* lambda, const double* dlambda) override;
   std::vector<char> states() const override;
   void schur_mass(nonlinear::SparseEntries& out, PetscInt offset) const override;
   void schur_stiffness(nonlinear::SparseEntries& out, PetscInt offset) const override;
   nonlinear::ConstraintSummary summary(const double* lambda) const override;
+  std::vector<double> save_state() const override;
+  void restore_state(const std::vector<double>& saved) override;
   std::vector<std::pair<std::string, int>> surfaces() const override { return {{"slave", slave_tag_}}; }
 
   // Mean normal gap of each slave node at u, gn_i / m_i (a length; negative: penetration),
   // +infinity at nodes without a projection on the master.
-  std::vector<double> mean_normal_gaps(int step, const std::vector<double>& u) const;
+  std::vector<double> mean_normal_gaps(double t, const std::vector<double>& u) const;
 
   const SlaveSurface& slave() const { return slave_; }
   NodeState state(int node) const { return state_[node]; }
@@ -103,7 +106,7 @@ protected:
   // The master's part: kinematics of every slave node at u (with derivatives when asked)
   // and, when r_u is not null, the constraint forces r_u -= B^T lambda (with the blocks
   // -B^T and d(-B^T lambda)/du added to jacobian when it is not null).
-  virtual void compute_kinematics(int step, const std::vector<double>& u, const double* lambda,
+  virtual void compute_kinematics(double t, const std::vector<double>& u, const double* lambda,
                                   std::vector<double>* r_u, nonlinear::SparseEntries* jacobian, PetscInt offset,
                                   bool with_derivatives, std::vector<NodeKinematics>& nodes) const = 0;
 
@@ -111,10 +114,12 @@ protected:
   int slave_tag_;
   SlaveSurface slave_;
   ContactSettings settings_;
-  std::vector<double> u_previous_;  // converged displacement of the previous load step
-  int previous_step_ = 0;
+  std::vector<double> u_previous_;  // converged displacement at the start of the increment
+  double t_previous_ = 0;           // its pseudo-time
 
 private:
+  // r_t of node i at the start of an increment: tangential_penalty E / (h_i m_i).
+  double initial_r_t(int i) const;
   // The mean penetration depth an inactive node must exceed to enter contact at this update:
   // a fraction of the deepest penetrated inactive node's.
   double entry_depth(const std::vector<NodeKinematics>& nodes) const;
@@ -130,7 +135,10 @@ private:
   // Normals at the last iterate evaluated with its Jacobian (for schur_mass and schur_stiffness, which the
   // Newton driver calls right after assembling that Jacobian) or updated on.
   mutable std::vector<Vec3> normals_;
-  bool settled_ = false;  // the last state update changed no state
+  // The last update changed no state (or held them) and moved the multipliers by at most
+  // settle_tolerance relative to them.
+  bool settled_ = false;
+  bool multipliers_settled(const double* lambda, const double* dlambda) const;
 };
 
 }  // namespace stiction::contact

@@ -21,9 +21,9 @@ RigidPlaneContact::RigidPlaneContact(std::string name, const fem::FieldSpace& sp
   normal_.normalize();
 }
 
-Vec3 RigidPlaneContact::plane_motion(int step) const {
+Vec3 RigidPlaneContact::plane_motion(double t) const {
   Vec3 d = Vec3::Zero();
-  if (plane_.motion && step > 0) plane_.motion(step, d.data());
+  if (plane_.motion && t > 0) plane_.motion(t, d.data());
   return d;
 }
 
@@ -34,13 +34,13 @@ Vec3 RigidPlaneContact::b_times(const std::vector<double>& v, int i) const {
   return out;
 }
 
-void RigidPlaneContact::compute_kinematics(int step, const std::vector<double>& u, const double* lambda,
+void RigidPlaneContact::compute_kinematics(double t, const std::vector<double>& u, const double* lambda,
                                            std::vector<double>* r_u, nonlinear::SparseEntries* jacobian,
                                            PetscInt offset, bool with_derivatives,
                                            std::vector<NodeKinematics>& nodes) const {
   const int d = dim_;
-  const Vec3 p = to_vec(plane_.point) + plane_motion(step);
-  const Vec3 plane_slip = plane_motion(step) - plane_motion(previous_step_);
+  const Vec3 p = to_vec(plane_.point) + plane_motion(t);
+  const Vec3 plane_slip = plane_motion(t) - plane_motion(t_previous_);
   nodes.assign(slave_.n_nodes(), NodeKinematics{});
   for (int i = 0; i < slave_.n_nodes(); ++i) {
     NodeKinematics& k = nodes[i];

@@ -21,7 +21,7 @@ namespace stiction::contact {
 struct RigidPlane {
   std::array<double, 3> point{0, 0, 0};
   std::array<double, 3> normal{0, 1, 0};           // unit, towards the slave body
-  std::function<void(int step, double* out)> motion;  // translation at a load step (0 at step 0)
+  std::function<void(double t, double* out)> motion;  // translation at pseudo-time t (0 at t = 0)
 };
 
 class RigidPlaneContact final : public ContactPair {
@@ -30,11 +30,11 @@ public:
                     ContactSettings settings);
 
 private:
-  void compute_kinematics(int step, const std::vector<double>& u, const double* lambda, std::vector<double>* r_u,
+  void compute_kinematics(double t, const std::vector<double>& u, const double* lambda, std::vector<double>* r_u,
                           nonlinear::SparseEntries* jacobian, PetscInt offset, bool with_derivatives,
                           std::vector<NodeKinematics>& nodes) const override;
   Vec3 b_times(const std::vector<double>& v, int i) const;  // sum_a b_ia v_a
-  Vec3 plane_motion(int step) const;
+  Vec3 plane_motion(double t) const;
 
   RigidPlane plane_;
   Vec3 normal_;

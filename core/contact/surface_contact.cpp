@@ -565,7 +565,7 @@ void SurfaceContact::nodal_normals(const std::vector<double>& u, bool with_deriv
   }
 }
 
-void SurfaceContact::compute_kinematics(int, const std::vector<double>& u, const double* lambda,
+void SurfaceContact::compute_kinematics(double, const std::vector<double>& u, const double* lambda,
                                         std::vector<double>* r_u, nonlinear::SparseEntries* jacobian, PetscInt offset,
                                         bool with_derivatives, std::vector<NodeKinematics>& nodes) const {
   if (dim_ == 2) kinematics<2>(u, lambda, r_u, jacobian, offset, with_derivatives, nodes);

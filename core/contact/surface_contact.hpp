@@ -69,7 +69,7 @@ public:
   }
 
 private:
-  void compute_kinematics(int step, const std::vector<double>& u, const double* lambda, std::vector<double>* r_u,
+  void compute_kinematics(double t, const std::vector<double>& u, const double* lambda, std::vector<double>* r_u,
                           nonlinear::SparseEntries* jacobian, PetscInt offset, bool with_derivatives,
                           std::vector<NodeKinematics>& nodes) const override;
   template <int D>

@@ -40,39 +40,52 @@ void LinearElastic::first_piola_and_tangent(const Mat3& F, Mat3& P, Tangent& A) 
               lambda_ * (i == J) * (k == L) + mu_ * ((i == k) * (J == L) + (i == L) * (J == k));
 }
 
-NeoHookean::NeoHookean(double E, double nu) : E_(E), nu_(nu) { lame_parameters(E, nu, lambda_, mu_); }
+NeoHookean::NeoHookean(double E, double nu, Form form) : E_(E), nu_(nu), form_(form) {
+  lame_parameters(E, nu, lambda_, mu_);
+}
 
 std::string NeoHookean::describe() const {
-  return fmt::format("compressible Neo-Hookean, Wriggers' form (E = {:g}, nu = {:g}; mu = {:g}, Lambda = {:g})",
-                     E_, nu_, mu_, lambda_);
+  return fmt::format("compressible Neo-Hookean, {} form (E = {:g}, nu = {:g}; mu = {:g}, Lambda = {:g})",
+                     form_ == Form::Wriggers ? "Wriggers'" : "Bonet's", E_, nu_, mu_, lambda_);
+}
+
+void NeoHookean::volumetric(double J, double& c, double& J_dc) const {
+  if (form_ == Form::Wriggers) {
+    c = 0.5 * lambda_ * (J * J - 1) - mu_;
+    J_dc = lambda_ * J * J;
+  } else {
+    c = lambda_ * std::log(J) - mu_;
+    J_dc = lambda_;
+  }
 }
 
 double NeoHookean::energy(const Mat3& F) const {
-  const double J = F.determinant();
+  const double J = F.determinant(), lnJ = std::log(J);
   const double I1 = (F.transpose() * F).trace();
-  return 0.5 * mu_ * (I1 - 3) + 0.25 * lambda_ * (J * J - 1) - (0.5 * lambda_ + mu_) * std::log(J);
+  const double volumetric = form_ == Form::Wriggers ? 0.25 * lambda_ * (J * J - 1) - (0.5 * lambda_ + mu_) * lnJ
+                                                    : -mu_ * lnJ + 0.5 * lambda_ * lnJ * lnJ;
+  return 0.5 * mu_ * (I1 - 3) + volumetric;
 }
 
 Mat3 NeoHookean::first_piola(const Mat3& F) const {
-  const double J = F.determinant();
-  const Mat3 FinvT = F.inverse().transpose();
-  return mu_ * F + (0.5 * lambda_ * (J * J - 1) - mu_) * FinvT;
+  double c, J_dc;
+  volumetric(F.determinant(), c, J_dc);
+  return mu_ * F + c * F.inverse().transpose();
 }
 
-// A_iJkL = mu d_ik d_JL + Lambda J^2 G_iJ G_kL - c G_iL G_kJ, with G = F^-T and
-// c = Lambda/2 (J^2 - 1) - mu (from d(F^-T)_iJ/dF_kL = -G_iL G_kJ, d(J^2)/dF = 2 J^2 G).
+// A_iJkL = mu d_ik d_JL + J c'(J) G_iJ G_kL - c G_iL G_kJ, with G = F^-T (from
+// d(F^-T)_iJ/dF_kL = -G_iL G_kJ and dJ/dF = J G).
 void NeoHookean::first_piola_and_tangent(const Mat3& F, Mat3& P, Tangent& A) const {
-  const double J = F.determinant();
   const Mat3 G = F.inverse().transpose();
-  const double c = 0.5 * lambda_ * (J * J - 1) - mu_;
+  double c, J_dc;
+  volumetric(F.determinant(), c, J_dc);
   P = mu_ * F + c * G;
-  const double lj2 = lambda_ * J * J;
   for (int i = 0; i < 3; ++i)
     for (int J_ = 0; J_ < 3; ++J_)
       for (int k = 0; k < 3; ++k)
         for (int L = 0; L < 3; ++L)
           A[tangent_index(i, J_, k, L)] =
-              mu_ * (i == k) * (J_ == L) + lj2 * G(i, J_) * G(k, L) - c * G(i, L) * G(k, J_);
+              mu_ * (i == k) * (J_ == L) + J_dc * G(i, J_) * G(k, L) - c * G(i, L) * G(k, J_);
 }
 
 MooneyRivlin::MooneyRivlin(double mu10, double mu01, double kappa, Form form)

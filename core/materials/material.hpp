@@ -58,13 +58,17 @@ private:
   double E_, nu_, lambda_, mu_;
 };
 
-// Compressible Neo-Hookean in Wriggers' form (paper Sec. 2.1, paper-notes 1):
-//   Psi = mu/2 (I1 - 3) + Lambda/4 (J^2 - 1) - (Lambda/2 + mu) ln J
-//   P   = mu F + (Lambda/2 (J^2 - 1) - mu) F^-T
+// Compressible Neo-Hookean, P = mu F + c(J) F^-T, in two forms that differ in the volumetric
+// part (both reduce to linear elasticity with Lame's lambda and mu at small strain):
+//   Wriggers' (paper Sec. 2.1, paper-notes 1):
+//     Psi = mu/2 (I1 - 3) + Lambda/4 (J^2 - 1) - (Lambda/2 + mu) ln J,  c = Lambda/2 (J^2 - 1) - mu
+//   Bonet & Wood's (most published ironing results use it):
+//     Psi = mu/2 (I1 - 3) - mu ln J + Lambda/2 (ln J)^2,               c = Lambda ln J - mu
 class NeoHookean final : public Material {
 public:
-  NeoHookean(double E, double nu);
-  std::string name() const override { return "neo-hookean"; }
+  enum class Form { Wriggers, Bonet };
+  NeoHookean(double E, double nu, Form form = Form::Wriggers);
+  std::string name() const override { return form_ == Form::Wriggers ? "neo-hookean" : "neo-hookean-bonet"; }
   std::string describe() const override;
   double energy(const Mat3& F) const override;
   Mat3 first_piola(const Mat3& F) const override;
@@ -72,7 +76,11 @@ public:
   double reference_modulus() const override { return E_; }
 
 private:
+  // c(J) and J dc/dJ of the stress above.
+  void volumetric(double J, double& c, double& J_dc) const;
+
   double E_, nu_, lambda_, mu_;
+  Form form_;
 };
 
 // Mooney-Rivlin (paper Sec. 2.2, paper-notes 1):

@@ -42,18 +42,21 @@ public:
   virtual ~MultiplierConstraint() = default;
   virtual std::string name() const = 0;
   virtual int n_multipliers() const = 0;
-  // At the start of load step `step` (1-based), u is the converged state of the previous
-  // step: the reference of the tangential slip increments (15)-(16).
-  virtual void begin_step(int step, const std::vector<double>& u) = 0;
+  // At the start of a load increment from pseudo-time t_start, u is the converged state there:
+  // the reference of the tangential slip increments (15)-(16).
+  virtual void begin_increment(double t_start, const std::vector<double>& u) = 0;
   // Adds the constraint forces to r_u (r_u -= B^T lambda), writes the constraint rows r_c
   // (n_multipliers entries) for the current states, and, when jacobian is not null, adds
   // the blocks -B^T, C_u and C_l. Multiplier k of this constraint is unknown
   // `offset + k` of the augmented system; lambda points at this constraint's multipliers.
-  virtual void evaluate(int step, const std::vector<double>& u, const double* lambda, std::vector<double>& r_u,
+  virtual void evaluate(double t, const std::vector<double>& u, const double* lambda, std::vector<double>& r_u,
                         double* r_c, SparseEntries* jacobian, PetscInt offset) const = 0;
   // After a Newton update: applies the state machine (transitions A-E of Sec. 4.5) at the
   // new iterate; returns how many states changed.
-  virtual int update_states(int step, const std::vector<double>& u, const double* lambda, const double* dlambda) = 0;
+  virtual int update_states(double t, const std::vector<double>& u, const double* lambda, const double* dlambda) = 0;
+  // After a Newton update at which the driver held the states (active_set_monitor.hpp):
+  // what the constraint tracks of the multipliers' progress besides its states.
+  virtual void states_held(const double* lambda, const double* dlambda) {}
   // The current states, one char per multiplier node (for cycle detection and the step
   // predictor); kFreeState marks a node that carries no constraint (inactive).
   static constexpr char kFreeState = 0;
@@ -66,6 +69,10 @@ public:
   // phi_j): with Pi M Pi it spans the fractional Schur model of the contact preconditioner.
   virtual void schur_stiffness(SparseEntries& out, PetscInt offset) const = 0;
   virtual ConstraintSummary summary(const double* lambda) const = 0;
+  // Everything besides the multipliers that a converged state carries into the next
+  // increment (the contact states), to retry a failed increment from it.
+  virtual std::vector<double> save_state() const = 0;
+  virtual void restore_state(const std::vector<double>& saved) = 0;
   // The boundary facets the constraint acts on, by role ("slave", "master"), for the
   // traction integrals the Newton driver reports per load step (paper's F4, F5).
   virtual std::vector<std::pair<std::string, int>> surfaces() const { return {}; }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "common/error.hpp"
 #include "fem/elasticity_assembly.hpp"
@@ -196,27 +197,27 @@ void QuasiStaticSolver::build_constraints() {
     if (is_constrained_[i]) constrained_.push_back(i);
 }
 
-fem::InternalForceStatus QuasiStaticSolver::residual(int step, const std::vector<double>& u,
+fem::InternalForceStatus QuasiStaticSolver::residual(double t, const std::vector<double>& u,
                                                      std::vector<double>& r) const {
   const fem::FieldSpace& space = *problem_.space;
   r.assign(space.n_dofs(), 0.0);
   auto status = fem::assemble_internal(space, problem_.cell_material, u, &r, nullptr);
   if (problem_.body_force)
-    fem::subtract_body_force(space, [&](const double* X, double* out) { problem_.body_force(X, step, out); }, r);
-  for (const auto& t : problem_.tractions)
-    fem::subtract_traction(space, t.facet_tag, [&](const double* X, double* out) { t.value(X, step, out); }, r);
+    fem::subtract_body_force(space, [&](const double* X, double* out) { problem_.body_force(X, t, out); }, r);
+  for (const auto& load : problem_.tractions)
+    fem::subtract_traction(space, load.facet_tag, [&](const double* X, double* out) { load.value(X, t, out); }, r);
   return status;
 }
 
-fem::InternalForceStatus QuasiStaticSolver::evaluate(int step, const std::vector<double>& u,
+fem::InternalForceStatus QuasiStaticSolver::evaluate(double t, const std::vector<double>& u,
                                                      const std::vector<double>& lambda, Residuals& r,
                                                      bool elastic) const {
   fem::InternalForceStatus status;
-  if (elastic) status = residual(step, u, r.elastic);
+  if (elastic) status = residual(t, u, r.elastic);
   r.u = r.elastic;
   r.c.assign(lambda.size(), 0.0);
   for (size_t k = 0; k < problem_.constraints.size(); ++k)
-    problem_.constraints[k]->evaluate(step, u, lambda.data() + constraint_offset_[k], r.u,
+    problem_.constraints[k]->evaluate(t, u, lambda.data() + constraint_offset_[k], r.u,
                                       r.c.data() + constraint_offset_[k], nullptr, 0);
   return status;
 }
@@ -262,7 +263,7 @@ void QuasiStaticSolver::assemble_system(const Residuals& r, bool lift) {
     std::vector<double> scratch_u(space.n_dofs()), scratch_c(lambda_.size());
     const PetscInt n_u = space.n_dofs();
     for (size_t k = 0; k < problem_.constraints.size(); ++k) {
-      problem_.constraints[k]->evaluate(step_, u_, lambda_.data() + constraint_offset_[k], scratch_u,
+      problem_.constraints[k]->evaluate(target_time_, u_, lambda_.data() + constraint_offset_[k], scratch_u,
                                         scratch_c.data() + constraint_offset_[k], &blocks, n_u + constraint_offset_[k]);
       problem_.constraints[k]->schur_mass(mass, constraint_offset_[k]);
       problem_.constraints[k]->schur_stiffness(surface_stiffness, constraint_offset_[k]);
@@ -292,10 +293,10 @@ void QuasiStaticSolver::assemble_system(const Residuals& r, bool lift) {
                                     1.0, x, system_.rhs));
 }
 
-int QuasiStaticSolver::update_constraint_states(int step, const std::vector<double>& dlambda) {
+int QuasiStaticSolver::update_constraint_states(double t, const std::vector<double>& dlambda) {
   int changes = 0;
   for (size_t k = 0; k < problem_.constraints.size(); ++k)
-    changes += problem_.constraints[k]->update_states(step, u_, lambda_.data() + constraint_offset_[k],
+    changes += problem_.constraints[k]->update_states(t, u_, lambda_.data() + constraint_offset_[k],
                                                       dlambda.data() + constraint_offset_[k]);
   return changes;
 }
@@ -309,7 +310,7 @@ std::vector<char> QuasiStaticSolver::constraint_states() const {
   return all;
 }
 
-void QuasiStaticSolver::set_step_targets(int step) {
+void QuasiStaticSolver::set_step_targets(double t) {
   const fem::FieldSpace& space = *problem_.space;
   const int d = space.dim();
   // Prescribed values of this step on every constrained dof (last condition wins).
@@ -318,7 +319,7 @@ void QuasiStaticSolver::set_step_targets(int step) {
     const auto& bc = problem_.dirichlet[b];
     double val[3];
     for (int n : bc_nodes_[b]) {
-      space.interpolate_node([&](const double* X, double* out) { bc.value(X, step, out); }, n, val);
+      space.interpolate_node([&](const double* X, double* out) { bc.value(X, t, out); }, n, val);
       for (int c : bc.components) full_target[static_cast<size_t>(n) * d + c] = val[c];
     }
   }
@@ -344,7 +345,7 @@ void QuasiStaticSolver::split_update(Vec du, std::vector<double>& dv, std::vecto
   STICTION_PETSC(VecRestoreArrayRead(du, &a));
 }
 
-QuasiStaticSolver::TrialStep QuasiStaticSolver::take_step(int step, const std::vector<double>& dv,
+QuasiStaticSolver::TrialStep QuasiStaticSolver::take_step(double t_target, const std::vector<double>& dv,
                                                           const std::vector<double>& dl, Residuals& rt) {
   // Backtracking: halve the step while the trial state inverts a cell or is not finite.
   TrialStep t;
@@ -357,7 +358,7 @@ QuasiStaticSolver::TrialStep QuasiStaticSolver::take_step(int step, const std::v
     if (t.alpha == 1)
       for (size_t k = 0; k < constrained_.size(); ++k) trial[constrained_[k]] = target_[k];  // exact, free of round-off
     const auto t0 = std::chrono::steady_clock::now();
-    const auto st = evaluate(step, trial, trial_lambda, rt, true);
+    const auto st = evaluate(t_target, trial, trial_lambda, rt, true);
     t.assembly_seconds += seconds_since(t0);
     const double norm = std::hypot(free_norm(rt.u), l2_norm(rt.c));
     if (st.inverted_cell < 0 && std::isfinite(norm)) break;
@@ -381,13 +382,26 @@ double QuasiStaticSolver::contact_force_norm(const Residuals& r) const {
 }
 
 StepResult QuasiStaticSolver::solve_step(int step) {
+  if (step < 1 || step > problem_.n_steps())
+    throw Error(fmt::format("load step {} outside 1..{}", step, problem_.n_steps()), ErrorKind::Internal);
+  StepResult res = solve_increment(step, problem_.step_times[step]);
+  if (res.converged()) {
+    time_ = res.time;
+    completed_step_ = step;
+    res.completes_step = true;
+  }
+  return res;
+}
+
+StepResult QuasiStaticSolver::solve_increment(int step, double t) {
   const auto t_step = std::chrono::steady_clock::now();
   const size_t n_u = problem_.space->n_dofs();
   StepResult res;
   res.step = step;
-  step_ = step;
-  for (auto* c : problem_.constraints) c->begin_step(step, u_);
-  set_step_targets(step);
+  res.time = t;
+  target_time_ = t;
+  for (auto* c : problem_.constraints) c->begin_increment(time_, u_);
+  set_step_targets(t);
   auto lift_pending = [&] {
     for (size_t k = 0; k < constrained_.size(); ++k)
       if (u_[constrained_[k]] != target_[k]) return true;
@@ -396,7 +410,7 @@ StepResult QuasiStaticSolver::solve_step(int step) {
 
   Residuals r, rt;
   auto t0 = std::chrono::steady_clock::now();
-  const auto st0 = evaluate(step, u_, lambda_, r, true);
+  const auto st0 = evaluate(t, u_, lambda_, r, true);
   double asm_seconds = seconds_since(t0);
   if (st0.inverted_cell >= 0)
     throw Error(fmt::format("load step {}: cell {} is inverted at the start of the step", step, st0.inverted_cell),
@@ -415,9 +429,9 @@ StepResult QuasiStaticSolver::solve_step(int step) {
     res.wall_seconds = seconds_since(t_step);
     return res;
   };
-  // Contact: states seen in this step, with the residual when they were last left.
-  std::map<std::vector<char>, double> seen_states;
+  ActiveSetMonitor monitor(settings_.active_set);
   int last_changes = 0;
+  bool states_checked = true;  // the states were tested at the current iterate
   if (!lambda_.empty()) {
     // Predictor (choice): while some node is in contact, the first solve of a step keeps the
     // previous step's states, so the contact rows carry the master's motion into the body
@@ -430,8 +444,8 @@ StepResult QuasiStaticSolver::solve_step(int step) {
     // part of the overlap: ContactPair::entry_depth).
     const std::vector<char> states = constraint_states();
     if (std::all_of(states.begin(), states.end(), [](char c) { return c == MultiplierConstraint::kFreeState; })) {
-      last_changes = update_constraint_states(step, std::vector<double>(lambda_.size(), 0.0));
-      if (last_changes > 0) evaluate(step, u_, lambda_, r, false);
+      last_changes = update_constraint_states(t, std::vector<double>(lambda_.size(), 0.0));
+      if (last_changes > 0) evaluate(t, u_, lambda_, r, false);
     }
     cnorm = c_reference = l2_norm(r.c);
   }
@@ -442,7 +456,8 @@ StepResult QuasiStaticSolver::solve_step(int step) {
   for (int it = 0;; ++it) {
     const bool pending = lift_pending();
     const double tol = std::max(settings_.atol, settings_.rtol * res.reference_residual);
-    const bool constraints_ok = last_changes == 0 && cnorm <= std::max(settings_.atol, settings_.rtol * c_reference);
+    const bool constraints_ok =
+        states_checked && last_changes == 0 && cnorm <= std::max(settings_.atol, settings_.rtol * c_reference);
     if (!pending && (it > 0 || rnorm <= settings_.atol) && constraints_ok && rnorm <= tol)
       return finish(rnorm <= settings_.atol ? NewtonReason::ConvergedAbsolute : NewtonReason::ConvergedRelative);
     if (it == settings_.max_iterations) {
@@ -480,7 +495,7 @@ StepResult QuasiStaticSolver::solve_step(int step) {
     }
     std::vector<double> dv(n_u), dl(lambda_.size());
     split_update(du, dv, dl);
-    const TrialStep trial = take_step(step, dv, dl, rt);
+    const TrialStep trial = take_step(t, dv, dl, rt);
     asm_seconds = trial.assembly_seconds;
     if (trial.failed) {
       res.iterations.push_back(rec);
@@ -492,12 +507,24 @@ StepResult QuasiStaticSolver::solve_step(int step) {
     }
     const double alpha = trial.alpha;
     r = std::move(rt);
+    ActiveSetMonitor::Verdict verdict = ActiveSetMonitor::Verdict::Continue;
     if (!lambda_.empty()) {
-      const std::vector<char> before = constraint_states();
-      last_changes = update_constraint_states(step, dl);
-      if (last_changes > 0) {
-        seen_states[before] = free_norm(r.u) + l2_norm(r.c);
-        evaluate(step, u_, lambda_, r, false);  // the rows of the new states
+      const double r_free = free_norm(r.u), r_c = l2_norm(r.c);
+      const bool converged_now = r_free <= std::max(settings_.atol, settings_.rtol * res.reference_residual) &&
+                                 r_c <= std::max(settings_.atol, settings_.rtol * c_reference);
+      const double progress = std::max(r_free / res.reference_residual, r_c / std::max(c_reference, settings_.atol));
+      states_checked = monitor.may_update(progress, converged_now);
+      last_changes = 0;
+      if (!states_checked)
+        for (size_t k = 0; k < problem_.constraints.size(); ++k)
+          problem_.constraints[k]->states_held(lambda_.data() + constraint_offset_[k], dl.data() + constraint_offset_[k]);
+      if (states_checked) {
+        const std::vector<char> before = constraint_states();
+        last_changes = update_constraint_states(t, dl);
+        if (last_changes > 0) {
+          evaluate(t, u_, lambda_, r, false);  // the rows of the new states
+          verdict = monitor.after_update(before, constraint_states(), r_free + r_c, free_norm(r.u) + l2_norm(r.c));
+        }
       }
       c_reference = std::max(c_reference, l2_norm(r.c));
       // Contact carries the load of a displacement-driven master: its forces set the scale.
@@ -515,24 +542,80 @@ StepResult QuasiStaticSolver::solve_step(int step) {
                                settings_.divergence_factor, res.reference_residual);
       return finish(NewtonReason::DivergedResidualGrowth);
     }
-    if (last_changes > 0) {
-      auto seen = seen_states.find(constraint_states());
-      if (seen != seen_states.end() && rnorm + cnorm >= seen->second) {
-        res.detail = fmt::format("contact states of iteration {} recur and the residual {:.3e} has not fallen below "
-                                 "{:.3e} since they were last seen",
-                                 it + 1, rnorm + cnorm, seen->second);
-        return finish(NewtonReason::DivergedActiveSetCycle);
-      }
+    if (verdict == ActiveSetMonitor::Verdict::Cycle) {
+      res.detail = fmt::format("contact states of iteration {} recur without the residual {:.3e} having fallen, "
+                               "after {} tightenings of the state-update gate (now {:.1e})",
+                               it + 1, rnorm + cnorm, monitor.remedies_used(), monitor.gate());
+      return finish(NewtonReason::DivergedActiveSetCycle);
     }
   }
 }
 
-std::vector<StepResult> QuasiStaticSolver::run(const std::function<void(const StepResult&)>& on_step) {
+QuasiStaticSolver::State QuasiStaticSolver::state() const {
+  State s{completed_step_, time_, u_, lambda_, {}};
+  for (const auto* c : problem_.constraints) s.constraints.push_back(c->save_state());
+  return s;
+}
+
+void QuasiStaticSolver::restore(const State& s) {
+  if (s.u.size() != u_.size() || s.lambda.size() != lambda_.size() ||
+      s.constraints.size() != problem_.constraints.size())
+    throw Error(fmt::format("a saved state of {} displacement unknowns, {} multipliers and {} constraints does not fit "
+                            "this problem ({}, {}, {})",
+                            s.u.size(), s.lambda.size(), s.constraints.size(), u_.size(), lambda_.size(),
+                            problem_.constraints.size()));
+  if (s.step < 0 || s.step > problem_.n_steps())
+    throw Error(fmt::format("a saved state at load step {} does not fit a problem of {} steps", s.step,
+                            problem_.n_steps()));
+  for (size_t k = 0; k < problem_.constraints.size(); ++k) problem_.constraints[k]->restore_state(s.constraints[k]);
+  u_ = s.u;
+  lambda_ = s.lambda;
+  time_ = s.time;
+  completed_step_ = s.step;
+}
+
+std::vector<StepResult> QuasiStaticSolver::run(const std::function<void(const StepResult&)>& on_step, int first_step,
+                                               int last_step) {
+  if (last_step < 0) last_step = problem_.n_steps();
   std::vector<StepResult> all;
-  for (int s = 1; s <= problem_.n_steps; ++s) {
-    all.push_back(solve_step(s));
-    if (on_step) on_step(all.back());
-    if (!all.back().converged()) break;
+  auto report = [&](const StepResult& r) {
+    all.push_back(r);
+    if (on_step) on_step(r);
+  };
+  int cut = 0, converged_at_cut = 0;
+  for (int k = first_step; k <= last_step; ++k) {
+    const double t_end = problem_.step_times[k], full = t_end - time_;
+    double increment = std::ldexp(full, -cut);  // a cut carries over into the next step
+    for (;;) {
+      // The last part lands exactly on the step's end (no sliver left by round-off).
+      const double t = time_ + increment >= t_end - 1e-9 * full ? t_end : time_ + increment;
+      const State saved = state();
+      StepResult r = solve_increment(k, t);
+      r.cut = cut;
+      if (!r.converged()) {
+        r.retried = cut < settings_.max_cuts;
+        report(r);
+        if (!r.retried) return all;
+        restore(saved);
+        increment *= 0.5;
+        ++cut;
+        converged_at_cut = 0;
+        continue;
+      }
+      time_ = t;
+      r.completes_step = t == t_end;
+      if (r.completes_step) completed_step_ = k;
+      report(r);
+      if (r.completes_step) break;
+      // Grow back after two converged parts at one size (after one, a sliding step that
+      // had failed at full size failed again at once: ironing-2d level 0, 25 wasted
+      // iterations per load step).
+      if (cut > 0 && ++converged_at_cut == 2) {
+        increment *= 2;
+        --cut;
+        converged_at_cut = 0;
+      }
+    }
   }
   return all;
 }

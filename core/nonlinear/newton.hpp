@@ -12,10 +12,15 @@
 //
 // Contact (problem.constraints): the multipliers follow the displacement (and pressure)
 // unknowns, the system is the augmented (30), and a step converges only when, in addition,
-// the last update changed no contact state and ||r_c|| <= max(atol, rtol * r_c,ref), r_c,ref
-// being the largest constraint residual seen in the step. A set of states that recurs
-// without the residual having fallen since it was last seen stops the step
-// (DIVERGED_ACTIVE_SET_CYCLE).
+// the states were checked at the final iterate and none changed, and ||r_c|| <= max(atol,
+// rtol * r_c,ref), r_c,ref being the largest constraint residual seen in the step. When the
+// states may change and when they cycle: active_set_monitor.hpp.
+//
+// Load increments (run): load step k goes from step_times[k-1] to step_times[k]. An increment
+// that fails is retried from the last converged state over half of it, down to max_cuts
+// halvings of the step; the reduced size carries over into the next steps and doubles after
+// two converged parts at one size (never past a step's end, which every step reaches
+// exactly). Every attempt, failed or not, reaches the caller as a StepResult.
 #include <array>
 #include <chrono>
 #include <functional>
@@ -25,6 +30,7 @@
 #include <vector>
 
 #include "fem/elasticity_assembly.hpp"
+#include "nonlinear/active_set_monitor.hpp"
 #include "nonlinear/linear_solver.hpp"
 #include "nonlinear/problem.hpp"
 
@@ -47,6 +53,8 @@ struct NewtonSettings {
   int max_backtracks = 10;      // step halvings when a trial state inverts a cell or is NaN
   double divergence_factor = 1e8;  // residual above this times r_ref: diverged
   Forcing forcing = Forcing::Fixed;
+  int max_cuts = 6;             // halvings of a failed load increment (0: a failed step stops the run)
+  ActiveSetSettings active_set;
 };
 
 enum class NewtonReason {
@@ -74,7 +82,11 @@ struct NewtonIteration {
 };
 
 struct StepResult {
-  int step = 0;
+  int step = 0;        // the load step this increment belongs to
+  double time = 0;     // pseudo-time the increment ends at
+  int cut = 0;         // halvings of the step's increment (0: the whole step)
+  bool retried = false;  // failed, and retried over a smaller increment from the last converged state
+  bool completes_step = false;  // converged at the end of its load step
   NewtonReason reason = NewtonReason::DivergedMaxIterations;
   double initial_residual = 0, reference_residual = 0, final_residual = 0;
   std::vector<NewtonIteration> iterations;
@@ -93,17 +105,31 @@ public:
   QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& problem, const NewtonSettings& settings,
                     LinearSolver& linear);
 
-  // Newton for one load step, starting from the current state.
+  // Newton for load step `step` in one increment, from the current state.
   StepResult solve_step(int step);
-  // Steps 1..n_steps; calls on_step after each; stops at the first failed step.
-  std::vector<StepResult> run(const std::function<void(const StepResult&)>& on_step = {});
+  // Newton for an increment of load step `step` from the current state to pseudo-time t.
+  StepResult solve_increment(int step, double t);
+  // Steps first_step..last_step (-1: n_steps) with cut-backs; calls on_step after each
+  // attempt; stops at the first step that fails at max_cuts halvings.
+  std::vector<StepResult> run(const std::function<void(const StepResult&)>& on_step = {}, int first_step = 1,
+                              int last_step = -1);
+
+  // What a converged state carries into the next increment: the retry point of a cut-back.
+  struct State {
+    int step = 0;      // the last load step completed
+    double time = 0;   // its pseudo-time (or of the last converged part of the next step)
+    std::vector<double> u, lambda;
+    std::vector<std::vector<double>> constraints;  // MultiplierConstraint::save_state, in order
+  };
+  State state() const;
+  void restore(const State& s);  // throws when s does not fit this problem
 
   const std::vector<double>& displacement() const { return u_; }
   std::vector<double>& displacement() { return u_; }
   // Contact multipliers of every constraint, in order (empty without contact).
   const std::vector<double>& multipliers() const { return lambda_; }
   // Full residual r(u) = f_int - f_ext at `step` (constrained rows included), and status.
-  fem::InternalForceStatus residual(int step, const std::vector<double>& u, std::vector<double>& r) const;
+  fem::InternalForceStatus residual(double t, const std::vector<double>& u, std::vector<double>& r) const;
   // The last assembled Newton system (for record/replay and tests).
   const NewtonSystem& system() const { return system_; }
   // Called after every linear solve with the system, the increment found and its figures
@@ -117,9 +143,9 @@ private:
   void build_constraints();
   void assemble_system(const Residuals& r, bool lift);
   // Elastic part (when `elastic` is set) and constraint part of the residual at (u, lambda).
-  fem::InternalForceStatus evaluate(int step, const std::vector<double>& u, const std::vector<double>& lambda,
+  fem::InternalForceStatus evaluate(double t, const std::vector<double>& u, const std::vector<double>& lambda,
                                     Residuals& r, bool elastic) const;
-  int update_constraint_states(int step, const std::vector<double>& dlambda);
+  int update_constraint_states(double t, const std::vector<double>& dlambda);
   // Pieces of solve_step: this step's prescribed values (target_), the norm of the lifted
   // right side's free rows, the split of a Newton update into u (and p) and multipliers,
   // the backtracked step (u_ and lambda_ move only when it succeeds), and the norm of the
@@ -131,10 +157,10 @@ private:
     bool failed = false;
     NewtonReason failure = NewtonReason::DivergedNaN;  // when failed
   };
-  void set_step_targets(int step);
+  void set_step_targets(double t);
   double lifted_rhs_free_norm() const;
   void split_update(Vec du, std::vector<double>& dv, std::vector<double>& dl) const;
-  TrialStep take_step(int step, const std::vector<double>& dv, const std::vector<double>& dl, Residuals& rt);
+  TrialStep take_step(double t, const std::vector<double>& dv, const std::vector<double>& dl, Residuals& rt);
   double contact_force_norm(const Residuals& r) const;
   std::vector<char> constraint_states() const;
   double free_norm(const std::vector<double>& r) const;
@@ -154,7 +180,9 @@ private:
   std::vector<char> is_constrained_;          // per dof
   std::vector<std::vector<int>> bc_nodes_;    // per Dirichlet condition
   std::vector<double> target_;                // prescribed values, per constrained dof (this step)
-  int step_ = 0;                              // the load step being solved
+  double time_ = 0;                           // pseudo-time of the current converged state
+  double target_time_ = 0;                    // pseudo-time of the increment being solved
+  int completed_step_ = 0;                    // the last load step completed
   SystemObserver observer_;
 };
 

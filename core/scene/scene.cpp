@@ -12,6 +12,7 @@
 #include "contact/rigid_plane_contact.hpp"
 #include "contact/surface_contact.hpp"
 #include "mesh/gmsh_io.hpp"
+#include "nonlinear/load_schedule.hpp"
 
 namespace stiction::scene {
 
@@ -21,7 +22,8 @@ using VT = ValueType;
 
 // Every key of a scene file, with its type, default and a one-line doc.
 struct Schemas {
-  TableSpec scene_meta, material, mesh, body, dirichlet, traction, body_force, contact, load, newton, output, root;
+  TableSpec scene_meta, material, mesh, body, dirichlet, traction, body_force, contact, phase, load, newton, output,
+      root;
   Schemas() {
     scene_meta = {"scene",
                   {{"name", VT::String, "scene name (defaults to the file name)", false, std::string()},
@@ -32,7 +34,8 @@ struct Schemas {
                     std::int64_t{0}}}};
     material = {"material",
                 {{"name", VT::String, "name bodies refer to", true},
-                 {"model", VT::String, "constitutive law", true, {}, {"linear", "neo-hookean", "mooney-rivlin"}},
+                 {"model", VT::String, "constitutive law (neo-hookean: Wriggers' form, the paper's; neo-hookean-bonet: Bonet & Wood's)", true, {},
+                  {"linear", "neo-hookean", "neo-hookean-bonet", "mooney-rivlin"}},
                  {"E", VT::Float, "Young's modulus (linear, neo-hookean)", false},
                  {"nu", VT::Float, "Poisson's ratio (linear, neo-hookean)", false},
                  {"mu10", VT::Float, "Mooney-Rivlin coefficient of I1", false},
@@ -64,16 +67,19 @@ struct Schemas {
                  {{"body", VT::String, "body of the boundary (optional with one body)", false},
                   {"boundary", VT::String, "boundary name (physical group) of the body", true},
                   {"components", VT::StringArray, "constrained components", true, {}, {"x", "y", "z"}},
-                  {"value", VT::FloatArray, "final prescribed displacement, one per listed component", true},
-                  {"schedule", VT::FloatArray, "factor on value at each step (default k/steps)", false}}};
+                  {"value", VT::FloatArray, "final prescribed displacement, one per listed component", false},
+                  {"schedule", VT::FloatArray, "factor on value at each load step (default: the step's pseudo-time / the last's)", false},
+                  {"table", VT::FloatRows, "rows [t, one value per listed component]: piecewise-linear in pseudo-time, instead of value and schedule", false}}};
     traction = {"traction",
                 {{"body", VT::String, "body of the boundary (optional with one body)", false},
                  {"boundary", VT::String, "boundary name (physical group) of the body", true},
-                 {"value", VT::FloatArray, "final dead-load traction per reference area, one per dimension", true},
-                 {"schedule", VT::FloatArray, "factor on value at each step (default k/steps)", false}}};
+                 {"value", VT::FloatArray, "final dead-load traction per reference area, one per dimension", false},
+                 {"schedule", VT::FloatArray, "factor on value at each load step (default: the step's pseudo-time / the last's)", false},
+                 {"table", VT::FloatRows, "rows [t, one value per dimension]: piecewise-linear in pseudo-time, instead of value and schedule", false}}};
     body_force = {"body_force",
-                  {{"value", VT::FloatArray, "final body force per reference volume", true},
-                   {"schedule", VT::FloatArray, "factor on value at each step (default k/steps)", false}}};
+                  {{"value", VT::FloatArray, "final body force per reference volume", false},
+                   {"schedule", VT::FloatArray, "factor on value at each load step (default: the step's pseudo-time / the last's)", false},
+                   {"table", VT::FloatRows, "rows [t, one value per dimension]: piecewise-linear in pseudo-time, instead of value and schedule", false}}};
     contact = {"contact",
                {{"name", VT::String, "name in reports (default contact-<k>)", false, std::string()},
                 {"body", VT::String, "slave body (optional with one body)", false},
@@ -87,7 +93,8 @@ struct Schemas {
                 {"point", VT::FloatArray, "'plane': a point of the plane at step 0", false},
                 {"normal", VT::FloatArray, "'plane': normal pointing towards the slave body", false},
                 {"motion", VT::FloatArray, "'plane': final rigid translation of the plane", false},
-                {"schedule", VT::FloatArray, "factor on motion at each step (default k/steps)", false},
+                {"schedule", VT::FloatArray, "factor on motion at each load step (default: the step's pseudo-time / the last's)", false},
+                {"motion_table", VT::FloatRows, "'plane': rows [t, translation per dimension], piecewise-linear in pseudo-time, instead of motion and schedule", false},
                 {"friction", VT::Float, "Coulomb coefficient mu (0: frictionless)", false, 0.0},
                 {"gap_tolerance", VT::Float, "state machine: penetration tolerance, relative to the slave size",
                  false, 1e-9},
@@ -105,7 +112,17 @@ struct Schemas {
                 {"mass_weighted_rows", VT::Boolean,
                  "rows in traction units (released nodes, slip tangential) times the lumped mass m_i", false,
                  false}}};
-    load = {"load", {{"steps", VT::Integer, "number of quasi-static load steps", false, std::int64_t{1}}}};
+    phase = {"phase",
+             {{"until", VT::Float, "pseudo-time at which the phase ends", true},
+              {"steps", VT::Integer, "equal load steps in the phase", true}}};
+    load = {"load",
+            {{"steps", VT::Integer, "equal load steps over pseudo-time [0, 1] (without phases)", false, std::int64_t{1}},
+             {"phases", VT::TableArray, "instead of steps: consecutive phases [{until = t, steps = n}, ...]", false, {},
+              {}, &phase},
+             {"max_cuts", VT::Integer, "halvings of a failed load increment before the run stops (0: off)", false,
+              std::int64_t{6}},
+             {"quick_until", VT::Float, "pseudo-time where the scene's short version (--quick) stops (default: the end)",
+              false}}};
     newton = {"newton",
               {{"atol", VT::Float, "absolute tolerance on the free residual norm", false, 1e-10},
                {"rtol", VT::Float, "tolerance relative to the step's reference residual", false, 1e-8},
@@ -113,7 +130,17 @@ struct Schemas {
                {"max_backtracks", VT::Integer, "step halvings when a trial state inverts a cell", false,
                 std::int64_t{10}},
                {"forcing", VT::String, "Krylov tolerance per Newton step (inexact Newton)", false, std::string("fixed"),
-                {"fixed", "eisenstat-walker"}}}};
+                {"fixed", "eisenstat-walker"}},
+               {"state_update_tolerance", VT::Float,
+                "contact states change only at iterates that solve their states to this relative residual (0: after "
+                "every solve, as the paper)",
+                false, 1e-3},
+               {"max_held_iterations", VT::Integer, "Newton iterations the contact states may be held before an update",
+                false, std::int64_t{8}},
+               {"cycle_remedies", VT::Integer,
+                "times a contact-state cycle tightens the update tolerance before the increment fails", false,
+                std::int64_t{2}},
+               {"cycle_remedy_factor", VT::Float, "factor on state_update_tolerance per remedy", false, 1e-2}}};
     output = {"output",
               {{"vtu", VT::Boolean, "write a VTU per load step and a PVD collection", false, true},
                {"csv", VT::Boolean, "write per-step quantities as CSV", false, true}}};
@@ -165,7 +192,10 @@ std::unique_ptr<materials::Material> make_material(const toml::table& t, const s
       throw Error(fmt::format("{}: material '{}': key '{}' does not apply to model '{}'", file, name, k, model));
   try {
     if (model == "linear") return std::make_unique<materials::LinearElastic>(get_float(t, S, "E"), get_float(t, S, "nu"));
-    if (model == "neo-hookean") return std::make_unique<materials::NeoHookean>(get_float(t, S, "E"), get_float(t, S, "nu"));
+    if (model == "neo-hookean" || model == "neo-hookean-bonet")
+      return std::make_unique<materials::NeoHookean>(get_float(t, S, "E"), get_float(t, S, "nu"),
+                                                     model == "neo-hookean" ? materials::NeoHookean::Form::Wriggers
+                                                                            : materials::NeoHookean::Form::Bonet);
     const auto form = get_string(t, S, "formulation") == "mixed" ? materials::MooneyRivlin::Form::Mixed
                                                                  : materials::MooneyRivlin::Form::Displacement;
     return std::make_unique<materials::MooneyRivlin>(get_float(t, S, "mu10"), get_float(t, S, "mu01"),
@@ -243,22 +273,75 @@ mesh::Mesh make_body_mesh(const toml::table& t, const std::string& file, const s
   return mesh::structured_box(dim, L, n);
 }
 
-// Per-step factor: schedule[step-1], or step/steps when no schedule is given.
-std::vector<double> schedule_of(const toml::table& t, int n_steps, const std::string& file, const std::string& what) {
-  std::vector<double> s = get_floats(t, "schedule");
-  if (s.empty())
-    for (int k = 1; k <= n_steps; ++k) s.push_back(static_cast<double>(k) / n_steps);
-  if (static_cast<int>(s.size()) != n_steps)
-    throw Error(fmt::format("{}: {}: schedule has {} entries for {} load steps", file, what, s.size(), n_steps));
-  s.insert(s.begin(), 0.0);  // step 0: unloaded
-  return s;
+// The pseudo-time function of a load: `table` rows [t, v...] (n_values each after t), or
+// `value_key` (n_values entries) times a factor per load step (`schedule`, default t_k / t_n),
+// 0 at t = 0. Exactly one of the two forms.
+nonlinear::PiecewiseLinear load_function(const toml::table& t, const std::vector<double>& step_times,
+                                         const std::string& value_key, const std::string& table_key,
+                                         std::vector<double> value, size_t n_values, const std::string& file,
+                                         const std::string& what) {
+  const bool has_table = t.contains(table_key), has_value = t.contains(value_key);
+  if (has_table == has_value)
+    throw Error(fmt::format("{}: {}: give exactly one of '{}' (with an optional schedule) and '{}'", file, what,
+                            value_key, table_key));
+  if (has_table) {
+    if (t.contains("schedule"))
+      throw Error(fmt::format("{}: {}: '{}' and 'schedule' exclude each other", file, what, table_key));
+    std::vector<double> times;
+    std::vector<std::vector<double>> rows;
+    for (const auto& row : get_float_rows(t, table_key)) {
+      if (row.size() != n_values + 1)
+        throw Error(fmt::format("{}: {}: every '{}' row needs {} numbers (t and {} values), one has {}", file, what,
+                                table_key, n_values + 1, n_values, row.size()));
+      times.push_back(row[0]);
+      rows.emplace_back(row.begin() + 1, row.end());
+    }
+    try {
+      return nonlinear::PiecewiseLinear(times, rows);
+    } catch (const Error& e) {
+      throw Error(fmt::format("{}: {}: {}", file, what, e.what()));
+    }
+  }
+  const int n_steps = static_cast<int>(step_times.size()) - 1;
+  std::vector<double> factor = get_floats(t, "schedule");
+  if (factor.empty())
+    for (int k = 1; k <= n_steps; ++k) factor.push_back(step_times[k] / step_times.back());
+  if (static_cast<int>(factor.size()) != n_steps)
+    throw Error(fmt::format("{}: {}: schedule has {} entries for {} load steps", file, what, factor.size(), n_steps));
+  factor.insert(factor.begin(), 0.0);  // t = 0: unloaded
+  std::vector<std::vector<double>> rows;
+  for (double f : factor) {
+    rows.push_back(value);
+    for (double& v : rows.back()) v *= f;
+  }
+  return nonlinear::PiecewiseLinear(step_times, rows);
 }
 
-// Constant-in-space field value * schedule[step].
-nonlinear::StepField scheduled_constant(std::vector<double> value, std::vector<double> schedule) {
-  return [value = std::move(value), schedule = std::move(schedule)](const double*, int step, double* out) {
-    for (size_t k = 0; k < value.size(); ++k) out[k] = value[k] * schedule.at(step);
-  };
+nonlinear::TimeField constant_in_space(nonlinear::PiecewiseLinear f) {
+  return [f = std::move(f)](const double*, double t, double* out) { f(t, out); };
+}
+
+// The pseudo-times of the load steps: `steps` equal steps over [0, 1], or phases.
+std::vector<double> step_times_of(const toml::table& load, const std::string& file) {
+  const auto& S = schemas();
+  const auto phases = tables(load, "phases");
+  if (phases.empty()) {
+    const int n = static_cast<int>(get_int(load, S.load, "steps"));
+    if (n < 1) throw Error(fmt::format("{}: load.steps must be at least 1", file));
+    return nonlinear::uniform_step_times(n);
+  }
+  if (load.contains("steps")) throw Error(fmt::format("{}: give load.steps or load.phases, not both", file));
+  std::vector<double> times{0.0};
+  for (size_t k = 0; k < phases.size(); ++k) {
+    const double until = get_float(*phases[k], S.phase, "until");
+    const auto n = get_int(*phases[k], S.phase, "steps");
+    if (n < 1 || !(until > times.back()))
+      throw Error(fmt::format("{}: load.phases[{}]: needs steps >= 1 and until > {} (the previous end)", file, k,
+                              times.back()));
+    const double start = times.back();
+    for (int j = 1; j <= n; ++j) times.push_back(j == n ? until : start + (until - start) * j / n);
+  }
+  return times;
 }
 
 struct Boundary {
@@ -297,17 +380,17 @@ std::array<double, 3> three(const std::vector<double>& v, int dim, const std::st
 }
 
 contact::RigidPlane make_plane(const toml::table& t, int dim, const std::string& file, const std::string& what,
-                               int n_steps) {
+                               const std::vector<double>& step_times) {
   for (const char* key : {"point", "normal"})
     if (!t.contains(key)) throw Error(fmt::format("{}: {}: master 'plane' needs key '{}'", file, what, key));
   contact::RigidPlane plane;
   plane.point = three(get_floats(t, "point"), dim, fmt::format("{}: {}: point", file, what));
   plane.normal = three(get_floats(t, "normal"), dim, fmt::format("{}: {}: normal", file, what));
-  if (t.contains("motion")) {
+  if (t.contains("motion") || t.contains("motion_table")) {
     const auto motion = get_floats(t, "motion");
-    three(motion, dim, fmt::format("{}: {}: motion", file, what));
-    auto field = scheduled_constant(motion, schedule_of(t, n_steps, file, what));
-    plane.motion = [field](int step, double* out) { field(nullptr, step, out); };
+    if (t.contains("motion")) three(motion, dim, fmt::format("{}: {}: motion", file, what));
+    auto f = load_function(t, step_times, "motion", "motion_table", motion, static_cast<size_t>(dim), file, what);
+    plane.motion = [f = std::move(f)](double time, double* out) { f(time, out); };
   }
   return plane;
 }
@@ -315,14 +398,14 @@ contact::RigidPlane make_plane(const toml::table& t, int dim, const std::string&
 std::unique_ptr<nonlinear::MultiplierConstraint> make_contact(const Scene& s, const toml::table& t,
                                                               const std::string& file, const std::string& what,
                                                               const std::vector<const materials::Material*>& body_material,
-                                                              int n_steps) {
+                                                              const std::vector<double>& step_times) {
   const auto& S = schemas().contact;
   const Boundary slave = boundary_of(s, t, file, what);
   const std::string slave_body = slave.name.substr(0, slave.name.find('/'));
   std::string name = get_string(t, S, "name");
   if (name.empty()) name = what;
   const std::string master = get_string(t, S, "master");
-  const std::vector<std::string> plane_keys{"point", "normal", "motion", "schedule"},
+  const std::vector<std::string> plane_keys{"point", "normal", "motion", "schedule", "motion_table"},
       surface_keys{"master_body", "master_boundary", "search_radius", "normal_linearisation", "master_point"};
   for (const std::string& key : master == "plane" ? surface_keys : plane_keys)
     if (t.contains(key))
@@ -350,7 +433,7 @@ std::unique_ptr<nonlinear::MultiplierConstraint> make_contact(const Scene& s, co
   try {
     if (master == "plane")
       return std::make_unique<contact::RigidPlaneContact>(name, *s.space, slave.tag,
-                                                          make_plane(t, s.mesh.dim, file, what, n_steps), cs);
+                                                          make_plane(t, s.mesh.dim, file, what, step_times), cs);
     if (!t.contains("master_boundary"))
       throw Error(fmt::format("master 'surface' needs key 'master_boundary'"));
     std::string master_body = t["master_body"].value<std::string>().value_or(slave_body);
@@ -429,8 +512,7 @@ std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& o
   auto& P = s.problem;
   P.space = s.space.get();
   for (int b : s.body_of_cell) P.cell_material.push_back(body_material[b]);
-  P.n_steps = static_cast<int>(get_int(sub(root, "load"), S.load, "steps"));
-  if (P.n_steps < 1) throw Error(fmt::format("{}: load.steps must be at least 1", origin));
+  P.step_times = step_times_of(sub(root, "load"), origin);
   const int dim = s.mesh.dim;
 
   int k = 0;
@@ -442,16 +524,21 @@ std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& o
     bc.name = where.name;
     const auto comps = get_strings(*d, "components");
     const auto value = get_floats(*d, "value");
-    if (comps.size() != value.size())
+    if (d->contains("value") && comps.size() != value.size())
       throw Error(fmt::format("{}: {}: {} components but {} values", origin, what, comps.size(), value.size()));
-    std::vector<double> full(dim, 0.0);
-    for (size_t c = 0; c < comps.size(); ++c) {
-      const int axis = comps[c][0] - 'x';
-      if (axis >= dim) throw Error(fmt::format("{}: {}: component '{}' in a {}D scene", origin, what, comps[c], dim));
+    for (const auto& c : comps) {
+      const int axis = c[0] - 'x';
+      if (axis >= dim) throw Error(fmt::format("{}: {}: component '{}' in a {}D scene", origin, what, c, dim));
       bc.components.push_back(axis);
-      full[axis] = value[c];
     }
-    bc.value = scheduled_constant(full, schedule_of(*d, P.n_steps, origin, what));
+    // The function gives the listed components; the field spreads them over all dim.
+    auto listed = load_function(*d, P.step_times, "value", "table", value, comps.size(), origin, what);
+    bc.value = [listed = std::move(listed), axes = bc.components, dim](const double*, double time, double* out) {
+      double v[3];
+      listed(time, v);
+      std::fill(out, out + dim, 0.0);
+      for (size_t c = 0; c < axes.size(); ++c) out[axes[c]] = v[c];
+    };
     P.dirichlet.push_back(std::move(bc));
   }
   k = 0;
@@ -462,23 +549,23 @@ std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& o
     load.facet_tag = where.tag;
     load.name = where.name;
     const auto value = get_floats(*t, "value");
-    if (static_cast<int>(value.size()) != dim)
+    if (t->contains("value") && static_cast<int>(value.size()) != dim)
       throw Error(fmt::format("{}: {}: value needs {} entries", origin, what, dim));
-    load.value = scheduled_constant(value, schedule_of(*t, P.n_steps, origin, what));
+    load.value = constant_in_space(load_function(*t, P.step_times, "value", "table", value, dim, origin, what));
     P.tractions.push_back(std::move(load));
   }
   if (root.contains("body_force")) {
     const toml::table& bf = sub(root, "body_force");
     const auto value = get_floats(bf, "value");
-    if (static_cast<int>(value.size()) != dim)
+    if (bf.contains("value") && static_cast<int>(value.size()) != dim)
       throw Error(fmt::format("{}: body_force.value needs {} entries", origin, dim));
-    P.body_force = scheduled_constant(value, schedule_of(bf, P.n_steps, origin, "body_force"));
+    P.body_force = constant_in_space(load_function(bf, P.step_times, "value", "table", value, dim, origin, "body_force"));
   }
 
   k = 0;
   for (const auto* c : tables(root, "contact")) {
     const std::string what = fmt::format("contact[{}]", k++);
-    auto pair = make_contact(s, *c, origin, what, body_material, P.n_steps);
+    auto pair = make_contact(s, *c, origin, what, body_material, P.step_times);
     P.constraints.push_back(pair.get());
     s.contacts.push_back(std::move(pair));
   }
@@ -489,8 +576,20 @@ std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& o
   s.newton.max_iterations = static_cast<int>(get_int(nw, S.newton, "max_iterations"));
   s.newton.max_backtracks = static_cast<int>(get_int(nw, S.newton, "max_backtracks"));
   s.newton.forcing = nonlinear::forcing_from_string(get_string(nw, S.newton, "forcing"));
+  auto& as = s.newton.active_set;
+  as.update_tolerance = get_float(nw, S.newton, "state_update_tolerance");
+  as.max_held = static_cast<int>(get_int(nw, S.newton, "max_held_iterations"));
+  as.cycle_remedies = static_cast<int>(get_int(nw, S.newton, "cycle_remedies"));
+  as.remedy_factor = get_float(nw, S.newton, "cycle_remedy_factor");
+  s.newton.max_cuts = static_cast<int>(get_int(sub(root, "load"), S.load, "max_cuts"));
+  if (const auto quick = sub(root, "load")["quick_until"].value<double>()) s.quick_until = *quick;
   if (!(s.newton.atol >= 0 && s.newton.rtol >= 0 && s.newton.max_iterations >= 1))
     throw Error(fmt::format("{}: newton tolerances must be >= 0 and max_iterations >= 1", origin));
+  if (!(as.update_tolerance >= 0 && as.max_held >= 0 && as.cycle_remedies >= 0 && as.remedy_factor > 0 &&
+        as.remedy_factor < 1 && s.newton.max_cuts >= 0))
+    throw Error(fmt::format("{}: newton.state_update_tolerance, max_held_iterations, cycle_remedies and load.max_cuts "
+                            "must be >= 0, cycle_remedy_factor in (0, 1)",
+                            origin));
   const toml::table& out = sub(root, "output");
   s.output.vtu = get_bool(out, S.output, "vtu");
   s.output.csv = get_bool(out, S.output, "csv");

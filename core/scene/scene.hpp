@@ -3,6 +3,7 @@
 // settings and outputs, read from a TOML file whose schema is declared in scene.cpp.
 // The builder creates only what the scene names. The linear solver never appears in a
 // scene: scene x solver x mesh level is the harness's sweep.
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -36,6 +37,9 @@ struct Scene {
   nonlinear::ElasticityProblem problem;
   nonlinear::NewtonSettings newton;
   OutputSettings output;
+  // Pseudo-time where the short version of the scene stops (`--quick`: the test suite's
+  // runs of long scenes); infinity: the whole run.
+  double quick_until = std::numeric_limits<double>::infinity();
 
   Scene() = default;
   Scene(const Scene&) = delete;

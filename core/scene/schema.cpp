@@ -15,6 +15,7 @@ std::string to_string(ValueType t) {
     case ValueType::String: return "string";
     case ValueType::Boolean: return "boolean";
     case ValueType::FloatArray: return "array of numbers";
+    case ValueType::FloatRows: return "array of arrays of numbers";
     case ValueType::StringArray: return "array of strings";
     case ValueType::Table: return "table";
     case ValueType::TableArray: return "array of tables";
@@ -52,6 +53,12 @@ bool matches(const toml::node& n, ValueType t) {
       if (!n.is_array()) return false;
       for (const auto& e : *n.as_array())
         if (!e.is_number()) return false;
+      return true;
+    }
+    case ValueType::FloatRows: {
+      if (!n.is_array()) return false;
+      for (const auto& row : *n.as_array())
+        if (!matches(row, ValueType::FloatArray)) return false;
       return true;
     }
     case ValueType::StringArray: {
@@ -181,6 +188,17 @@ std::vector<std::string> get_strings(const toml::table& t, const std::string& ke
   std::vector<std::string> out;
   if (const auto* a = t[key].as_array())
     for (const auto& e : *a) out.push_back(e.value<std::string>().value_or(""));
+  return out;
+}
+
+std::vector<std::vector<double>> get_float_rows(const toml::table& t, const std::string& key) {
+  std::vector<std::vector<double>> out;
+  if (const auto* a = t[key].as_array())
+    for (const auto& row : *a) {
+      out.emplace_back();
+      if (const auto* r = row.as_array())
+        for (const auto& e : *r) out.back().push_back(e.value<double>().value_or(0.0));
+    }
   return out;
 }
 

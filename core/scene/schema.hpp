@@ -13,7 +13,7 @@
 
 namespace stiction::scene {
 
-enum class ValueType { Integer, Float, String, Boolean, FloatArray, StringArray, Table, TableArray };
+enum class ValueType { Integer, Float, String, Boolean, FloatArray, FloatRows, StringArray, Table, TableArray };
 std::string to_string(ValueType t);
 
 struct TableSpec;
@@ -49,5 +49,6 @@ std::string get_string(const toml::table& t, const TableSpec& spec, const std::s
 bool get_bool(const toml::table& t, const TableSpec& spec, const std::string& key);
 std::vector<double> get_floats(const toml::table& t, const std::string& key);       // empty if absent
 std::vector<std::string> get_strings(const toml::table& t, const std::string& key);  // empty if absent
+std::vector<std::vector<double>> get_float_rows(const toml::table& t, const std::string& key);  // empty if absent
 
 }  // namespace stiction::scene

@@ -73,7 +73,7 @@ SolvedProblem solve_manufactured(int dim, int n, int level, fem::BasisKind kind)
     bc.name = "side" + std::to_string(tag);
     bc.facet_tag = tag;
     for (int c = 0; c < dim; ++c) bc.components.push_back(c);
-    bc.value = [&ms](const double* X, int step, double* u) { ms.value(X, u); };
+    bc.value = [&ms](const double* X, double, double* u) { ms.value(X, u); };
     p.dirichlet.push_back(bc);
   }
   p.body_force = [&ms](const double* X, int, double* f) { ms.body_force(X, f); };

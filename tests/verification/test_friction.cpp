@@ -131,7 +131,7 @@ TEST(Friction, CattaneoMindlinStickZoneOfTwoCylinders) {
   nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, sc->problem, sc->newton, *solver);
   const auto& pair = dynamic_cast<const contact::ContactPair&>(*sc->contacts.at(0));
   const double mu = 0.3, R_star = 0.5, E_star = 1.0 / (2 * (1 - 0.3 * 0.3));
-  for (int step = 1; step <= sc->problem.n_steps; ++step) {
+  for (int step = 1; step <= sc->problem.n_steps(); ++step) {
     const auto r = newton.solve_step(step);
     ASSERT_TRUE(r.converged()) << "step " << step << ": " << r.detail;
     const double P = r.reactions.at("lower/base")[1], Q = r.reactions.at("lower/base")[0];

@@ -75,7 +75,7 @@ normal_linearisation = "exact"
 std::pair<double, double> jacobian_error(ContactPair& pair, int n_u, const std::vector<double>& u0,
                                          const std::vector<double>& u, const std::vector<double>& lambda) {
   const int n_l = pair.n_multipliers(), n = n_u + n_l;
-  pair.begin_step(1, u0);
+  pair.begin_increment(0.0, u0);
   auto residual = [&](const std::vector<double>& uu, const std::vector<double>& ll, std::vector<double>& out) {
     std::vector<double> ru(n_u, 0.0), rc(n_l, 0.0);
     pair.evaluate(1, uu, ll.data(), ru, rc.data(), nullptr, n_u);
@@ -193,13 +193,13 @@ TEST(SurfaceContact, JacobianMatchesFiniteDifferencesOnACurvedMaster) {
 
 // J v against central differences (h = 1e-7) along three random directions v of
 // (u, lambda), to 1e-6 relative to the largest entry of J v: for systems too large for
-// column-wise differences. The pair's begin_step has been called.
-void expect_exact_directional_derivatives(ContactPair& pair, int step, int n_u, const std::vector<double>& u,
+// column-wise differences. The pair's begin_increment has been called.
+void expect_exact_directional_derivatives(ContactPair& pair, double t, int n_u, const std::vector<double>& u,
                                           const std::vector<double>& lambda) {
   const int n_l = pair.n_multipliers(), n = n_u + n_l;
   nonlinear::SparseEntries J;
   std::vector<double> r_u(n_u, 0.0), r_c(n_l, 0.0);
-  pair.evaluate(step, u, lambda.data(), r_u, r_c.data(), &J, n_u);
+  pair.evaluate(t, u, lambda.data(), r_u, r_c.data(), &J, n_u);
   std::mt19937 rng(13);
   std::uniform_real_distribution<double> U(-1, 1);
   for (int trial = 0; trial < 3; ++trial) {
@@ -211,7 +211,7 @@ void expect_exact_directional_derivatives(ContactPair& pair, int step, int n_u, 
       std::vector<double> up(u), lp(lambda), ru(n_u, 0.0), rc(n_l, 0.0);
       for (int k = 0; k < n_u; ++k) up[k] += sign * h * v[k];
       for (int k = 0; k < n_l; ++k) lp[k] += sign * h * v[n_u + k];
-      pair.evaluate(step, up, lp.data(), ru, rc.data(), nullptr, n_u);
+      pair.evaluate(t, up, lp.data(), ru, rc.data(), nullptr, n_u);
       ru.insert(ru.end(), rc.begin(), rc.end());
       (sign > 0 ? plus : minus) = ru;
     }
@@ -259,8 +259,8 @@ TEST_P(SurfaceContact3D, JacobianMatchesFiniteDifferences) {
   for (int n = 0; n < space.n_nodes(); ++n)
     if (!in_block[n])
       for (int c = 0; c < 3; ++c) u[3 * n + c] = base_now[3 * n + c], u0[3 * n + c] = base_before[3 * n + c];
-  pair.begin_step(1, u0);
-  expect_exact_directional_derivatives(pair, 1, space.n_dofs(), u, lambda);
+  pair.begin_increment(0.0, u0);
+  expect_exact_directional_derivatives(pair, 1.0, space.n_dofs(), u, lambda);
 }
 
 // Two curved P2 masters of many facets, the slave pressed 0.006 into the master so that its
@@ -287,7 +287,7 @@ TEST(SurfaceContact, JacobianMatchesFiniteDifferencesWhereTheSlavePenetratesAKin
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> U(-1, 1);
   std::vector<double> lambda(n_l, 0.0);
-  const auto gaps = pair.mean_normal_gaps(1, u);
+  const auto gaps = pair.mean_normal_gaps(1.0, u);
   int penetrated = 0;
   for (int i = 0; i < pair.slave().n_nodes(); ++i) {
     if (!(gaps[i] < 0)) continue;
@@ -295,8 +295,8 @@ TEST(SurfaceContact, JacobianMatchesFiniteDifferencesWhereTheSlavePenetratesAKin
     lambda[2 * i] = 0.3 * U(rng), lambda[2 * i + 1] = 1.5 + U(rng);
   }
   ASSERT_GE(penetrated, 8);
-  pair.begin_step(1, u0);
-  expect_exact_directional_derivatives(pair, 1, n_u, u, lambda);
+  pair.begin_increment(0.0, u0);
+  expect_exact_directional_derivatives(pair, 1.0, n_u, u, lambda);
 }
 
 
@@ -317,8 +317,8 @@ TEST_P(SurfaceContact3D, JacobianMatchesFiniteDifferencesOnACurvedMaster) {
   ASSERT_EQ(s->space->dim(), 3);
   std::vector<double> u0, u, lambda;
   random_state(pair, s->space->n_dofs(), 0.01, 1, u0, u, lambda);
-  pair.begin_step(1, u0);
-  expect_exact_directional_derivatives(pair, 1, s->space->n_dofs(), u, lambda);
+  pair.begin_increment(0.0, u0);
+  expect_exact_directional_derivatives(pair, 1.0, s->space->n_dofs(), u, lambda);
 }
 
 INSTANTIATE_TEST_SUITE_P(MasterPoint, SurfaceContact3D, testing::ValuesIn(kMasterPoints),
@@ -346,7 +346,7 @@ TEST(SurfaceContact, JacobianMatchesFiniteDifferencesAtAConvergedSelfContactStat
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> U(-1, 1);
   for (double& x : u) x += 1e-4 * U(rng);
-  expect_exact_directional_derivatives(pair, 5, s->space->n_dofs(), u, newton.multipliers());
+  expect_exact_directional_derivatives(pair, s->problem.step_times[5], s->space->n_dofs(), u, newton.multipliers());
 }
 
 TEST(ContactState, Transitions) {

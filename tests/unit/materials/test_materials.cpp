@@ -21,6 +21,7 @@ std::unique_ptr<Material> make(const std::string& name) {
   if (name == "mooney-rivlin") return std::make_unique<MooneyRivlin>(1.0, 0.1, 100.0, MooneyRivlin::Form::Mixed);
   if (name == "mooney-rivlin-displacement")
     return std::make_unique<MooneyRivlin>(1.0, 0.1, 100.0, MooneyRivlin::Form::Displacement);
+  if (name == "neo-hookean-bonet") return std::make_unique<NeoHookean>(200.0, 0.3, NeoHookean::Form::Bonet);
   return std::make_unique<NeoHookean>(200.0, 0.3);
 }
 
@@ -67,7 +68,8 @@ TEST_P(MaterialLaw, StressFreeAtIdentity) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Laws, MaterialLaw,
-                         ::testing::Values("linear", "neo-hookean", "mooney-rivlin", "mooney-rivlin-displacement"),
+                         ::testing::Values("linear", "neo-hookean", "neo-hookean-bonet", "mooney-rivlin",
+                                           "mooney-rivlin-displacement"),
                          [](const auto& info) {
                            std::string n = info.param;
                            for (char& c : n)
@@ -75,8 +77,10 @@ INSTANTIATE_TEST_SUITE_P(Laws, MaterialLaw,
                            return n;
                          });
 
-TEST(NeoHookean, MatchesLinearElasticityAtSmallStrain) {
-  const NeoHookean nh(200.0, 0.3);
+class NeoHookeanForm : public ::testing::TestWithParam<NeoHookean::Form> {};
+
+TEST_P(NeoHookeanForm, MatchesLinearElasticityAtSmallStrain) {
+  const NeoHookean nh(200.0, 0.3, GetParam());
   const LinearElastic lin(200.0, 0.3);
   for (double scale : {1e-4, 1e-6}) {
     const Mat3 F = sample_deformation(scale);
@@ -89,6 +93,27 @@ TEST(NeoHookean, MatchesLinearElasticityAtSmallStrain) {
   nh.first_piola_and_tangent(Mat3::Identity(), P, a_nh);
   lin.first_piola_and_tangent(Mat3::Identity(), P, a_lin);
   for (int k = 0; k < 81; ++k) EXPECT_NEAR(a_nh[k], a_lin[k], 1e-12 * 200);
+}
+
+INSTANTIATE_TEST_SUITE_P(Forms, NeoHookeanForm, ::testing::Values(NeoHookean::Form::Wriggers, NeoHookean::Form::Bonet));
+
+// The two forms share the deviatoric part and differ in the volumetric one: under a pure
+// dilation F = s I, P = (mu s + c(s^3) / s) I with c = Lambda ln J - mu (Bonet) or
+// Lambda/2 (J^2 - 1) - mu (Wriggers).
+TEST(NeoHookean, FormsDifferInTheVolumetricPartOnly) {
+  const double s = 1.1, J = s * s * s;
+  double lambda, mu;
+  lame_parameters(200.0, 0.3, lambda, mu);
+  const Mat3 F = s * Mat3::Identity();
+  const Mat3 P_bonet = NeoHookean(200.0, 0.3, NeoHookean::Form::Bonet).first_piola(F);
+  const Mat3 P_wriggers = NeoHookean(200.0, 0.3).first_piola(F);
+  EXPECT_NEAR(P_bonet(0, 0), mu * s + (lambda * std::log(J) - mu) / s, 1e-12 * mu);
+  EXPECT_NEAR(P_wriggers(0, 0), mu * s + (0.5 * lambda * (J * J - 1) - mu) / s, 1e-12 * mu);
+  // Isochoric shear (det F = 1): the volumetric parts vanish alike.
+  Mat3 shear = Mat3::Identity();
+  shear(0, 1) = 0.3;
+  EXPECT_LT((NeoHookean(200.0, 0.3, NeoHookean::Form::Bonet).first_piola(shear) -
+             NeoHookean(200.0, 0.3).first_piola(shear)).norm(), 1e-12 * mu);
 }
 
 TEST(NeoHookean, CauchyStressIsSymmetric) {

@@ -159,15 +159,15 @@ TEST_P(HomogeneousStretch, ExactToRoundOff) {
   ElasticityProblem p;
   p.space = &space;
   p.cell_material.assign(m.n_cells(), &law);
-  p.n_steps = 2;
+  p.step_times = {0.0, 1.0, 2.0};  // the pseudo-time counts the steps
   for (int axis = 0; axis < dim; ++axis) {  // rollers on the min faces
     const int tag = 2 * axis + 1;
-    p.dirichlet.push_back({"min" + std::to_string(axis), tag, {axis}, [](const double*, int, double* u) {
+    p.dirichlet.push_back({"min" + std::to_string(axis), tag, {axis}, [](const double*, double, double* u) {
                              u[0] = u[1] = u[2] = 0;
                            }});
   }
-  p.dirichlet.push_back({"xmax", 2, {0}, [d, L](const double*, int step, double* u) {
-                           u[0] = d * L[0] * step / 2.0;
+  p.dirichlet.push_back({"xmax", 2, {0}, [d, L](const double*, double t, double* u) {
+                           u[0] = d * L[0] * t / 2.0;
                            u[1] = u[2] = 0;
                          }});
   NewtonSettings settings;
@@ -212,11 +212,11 @@ struct Cantilever {
   Cantilever() {
     p.space = &space;
     p.cell_material.assign(m.n_cells(), &law);
-    p.n_steps = 2;
-    p.dirichlet.push_back({"clamp", 1, {0, 1}, [](const double*, int, double* u) { u[0] = u[1] = 0; }});
-    p.tractions.push_back({"end", 2, [](const double*, int step, double* t) {
+    p.step_times = {0.0, 1.0, 2.0};
+    p.dirichlet.push_back({"clamp", 1, {0, 1}, [](const double*, double, double* u) { u[0] = u[1] = 0; }});
+    p.tractions.push_back({"end", 2, [](const double*, double time, double* t) {
                              t[0] = 0;
-                             t[1] = -0.5 * step;
+                             t[1] = -0.5 * time;
                            }});
   }
 };
@@ -251,6 +251,7 @@ TEST(Newton, NamesTheReasonWhenItStops) {
   Cantilever c;
   NewtonSettings settings;
   settings.max_iterations = 1;
+  settings.max_cuts = 0;
   auto solver = solvers::create_solver("lu-mumps", PETSC_COMM_WORLD);
   QuasiStaticSolver newton(PETSC_COMM_WORLD, c.p, settings, *solver);
   const auto results = newton.run();
@@ -258,6 +259,48 @@ TEST(Newton, NamesTheReasonWhenItStops) {
   EXPECT_EQ(results[0].reason, NewtonReason::DivergedMaxIterations);
   EXPECT_FALSE(results[0].detail.empty());
   EXPECT_TRUE(std::isfinite(results[0].final_residual));
+}
+
+// A load step that Newton cannot finish within max_iterations is cut in halves from the last
+// converged state and reaches the same (path-independent, hyperelastic) end state; without
+// cut-backs the run stops at that step.
+TEST(Newton, CutBackRetriesAFailedStepAndReachesTheSameState) {
+  Cantilever c;
+  auto solver = solvers::create_solver("lu-mumps", PETSC_COMM_WORLD);
+  QuasiStaticSolver reference(PETSC_COMM_WORLD, c.p, NewtonSettings{}, *solver);
+  const auto whole = reference.run();
+  ASSERT_TRUE(whole.back().converged());
+  size_t most = 0;
+  for (const auto& r : whole) most = std::max(most, r.iterations.size());
+  ASSERT_GE(most, 3u);
+
+  NewtonSettings tight;
+  tight.max_iterations = static_cast<int>(most) - 1;  // too few for some whole step
+  tight.max_cuts = 0;
+  QuasiStaticSolver without(PETSC_COMM_WORLD, c.p, tight, *solver);
+  EXPECT_FALSE(without.run().back().converged());
+
+  tight.max_cuts = 4;
+  QuasiStaticSolver with(PETSC_COMM_WORLD, c.p, tight, *solver);
+  const auto parts = with.run();
+  ASSERT_TRUE(parts.back().converged()) << parts.back().detail;
+  EXPECT_TRUE(parts.back().completes_step);
+  EXPECT_DOUBLE_EQ(parts.back().time, 2.0);
+  int retried = 0, completed = 0;
+  for (const auto& r : parts) {
+    retried += r.retried;
+    completed += r.completes_step;
+    if (r.retried) EXPECT_FALSE(r.converged());
+  }
+  EXPECT_GE(retried, 1);
+  EXPECT_EQ(completed, 2);
+  EXPECT_GT(parts.size(), whole.size() + 1) << "a retried step adds its failed attempt and a second part";
+  double diff = 0, size = 0;
+  for (size_t k = 0; k < reference.displacement().size(); ++k) {
+    diff = std::max(diff, std::abs(with.displacement()[k] - reference.displacement()[k]));
+    size = std::max(size, std::abs(reference.displacement()[k]));
+  }
+  EXPECT_LT(diff, 1e-8 * size);
 }
 
 TEST(Newton, SystemCarriesFieldsAndNearNullSpace) {

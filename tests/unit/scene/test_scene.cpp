@@ -40,7 +40,7 @@ TEST(Scene, DefaultsComeFromTheSchema) {
   auto s = build_scene(kMinimal, "test.toml", ".");
   EXPECT_EQ(s->name, "test");
   EXPECT_EQ(s->level, 0);
-  EXPECT_EQ(s->problem.n_steps, 1);
+  EXPECT_EQ(s->problem.n_steps(), 1);
   EXPECT_EQ(s->newton.max_iterations, 25);
   EXPECT_DOUBLE_EQ(s->newton.rtol, 1e-8);
   EXPECT_EQ(s->space->kind(), fem::BasisKind::P2Hierarchical);
@@ -128,6 +128,50 @@ TEST(Scene, ScheduleLengthMustMatchSteps) {
   const std::string msg = error_of(std::string(kMinimal) + "\n[load]\nsteps = 3\n[[traction]]\nboundary = \"xmax\"\n"
                                                            "value = [1.0, 0.0]\nschedule = [0.5, 1.0]\n");
   EXPECT_NE(msg.find("schedule has 2 entries for 3 load steps"), std::string::npos) << msg;
+}
+
+// Load phases give the steps' pseudo-times; a table gives a load as a function of them.
+TEST(Scene, PhasesAndTablesDefineLoadsInPseudoTime) {
+  const std::string text = std::string(kMinimal) +
+                           "\n[load]\nphases = [{ until = 1.0, steps = 2 }, { until = 3.0, steps = 4 }]\nquick_until = 1.5\n"
+                           "[[traction]]\nboundary = \"xmax\"\ntable = [[0.0, 0.0, 0.0], [1.0, 2.0, 0.0], [3.0, 2.0, -4.0]]\n";
+  auto s = build_scene(text, "test.toml", ".");
+  const std::vector<double> expected{0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0};
+  ASSERT_EQ(s->problem.step_times.size(), expected.size());
+  for (size_t k = 0; k < expected.size(); ++k) EXPECT_DOUBLE_EQ(s->problem.step_times[k], expected[k]);
+  EXPECT_DOUBLE_EQ(s->quick_until, 1.5);
+  double t[2];
+  s->problem.tractions.at(0).value(nullptr, 0.5, t);
+  EXPECT_DOUBLE_EQ(t[0], 1.0);
+  s->problem.tractions.at(0).value(nullptr, 2.0, t);
+  EXPECT_DOUBLE_EQ(t[0], 2.0);
+  EXPECT_DOUBLE_EQ(t[1], -2.0);
+  // A per-step schedule is a table on the steps' pseudo-times (linear in between).
+  auto u = build_scene(std::string(kMinimal) + "\n[load]\nsteps = 2\n[[traction]]\nboundary = \"xmax\"\n"
+                                               "value = [1.0, 0.0]\nschedule = [1.0, 0.0]\n",
+                       "test.toml", ".");
+  u->problem.tractions.at(0).value(nullptr, 0.25, t);
+  EXPECT_DOUBLE_EQ(t[0], 0.5);
+  u->problem.tractions.at(0).value(nullptr, 0.75, t);
+  EXPECT_DOUBLE_EQ(t[0], 0.5);
+}
+
+TEST(Scene, LoadTablesAndPhasesAreChecked) {
+  const std::string traction = "\n[[traction]]\nboundary = \"xmax\"\n";
+  EXPECT_NE(error_of(std::string(kMinimal) + traction + "value = [1.0, 0.0]\ntable = [[0.0, 0.0, 0.0]]\n")
+                .find("give exactly one of 'value'"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + traction + "table = [[0.0, 0.0], [1.0, 1.0]]\n").find("needs 3 numbers"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + traction + "table = [[1.0, 0.0, 0.0], [0.5, 1.0, 0.0]]\n")
+                .find("pseudo-times must increase"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "\n[load]\nsteps = 2\nphases = [{ until = 1.0, steps = 2 }]\n")
+                .find("not both"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kMinimal) + "\n[load]\nphases = [{ until = 1.0, steps = 2 }, { until = 0.5, steps = 1 }]\n")
+                .find("until > 1"),
+            std::string::npos);
 }
 
 TEST(Scene, SchemaDocumentsEveryKey) {

@@ -1,0 +1,60 @@
+#pragma once
+// When the contact states of a Newton solve may change, and when their changes go round in
+// circles (paper Sec. 4.5 applies the state machine after every linear solve).
+//
+// Gate (choice, where the paper updates after every solve): the states are updated only at an
+// iterate that solves the problem of the current states to update_tolerance, i.e. when
+// max(||r_u|| / r_ref, ||r_c|| / r_c,ref) <= update_tolerance, or once the states have been
+// held for max_held iterations. Cause of the cycles it removes, measured on the shallow
+// ironing (ironing-2d, level 0, lu-mumps, frictionless): the first solve after contact
+// moves the indenter by the whole load increment; the iterate right after the states enter
+// is off by the nonlinear error of that jump (residual 1e2 x the reference), and the state
+// machine read the gaps and multipliers of that iterate: a node at the edge of the contact
+// zone penetrated (gn / m = -1.8e-3) because its neighbours' pressures were not yet right,
+// entered, showed a tension of -31 (pressures near 80) at the next iterate, left, and came
+// back: DIVERGED_ACTIVE_SET_CYCLE in the first contact step. Held until the iterate solved its
+// states to 1e-3, the same step converged with the seven nodes of the first guess and that
+// node free (gap positive); none of the edge flips were real.
+//
+// Cycle: a set of states that recurs without the residual having fallen since it was last
+// left. The remedy (before the step gives up with DIVERGED_ACTIVE_SET_CYCLE) tightens the
+// gate by remedy_factor, so the next updates read better-converged iterates; cycle_remedies
+// such tightenings are allowed per increment.
+#include <map>
+#include <vector>
+
+namespace stiction::nonlinear {
+
+struct ActiveSetSettings {
+  double update_tolerance = 1e-3;  // 0 or less: update after every linear solve (the paper)
+  int max_held = 8;                // iterations the states may be held before an update is forced
+  int cycle_remedies = 2;          // gate tightenings per increment before a cycle stops it
+  double remedy_factor = 1e-2;     // what each tightening multiplies update_tolerance by
+};
+
+class ActiveSetMonitor {
+public:
+  explicit ActiveSetMonitor(const ActiveSetSettings& settings) : settings_(settings), gate_(settings.update_tolerance) {}
+
+  // Whether the states are updated at an iterate whose fixed-state residual is `progress`
+  // (relative, as above); `converged` iterates are always checked.
+  bool may_update(double progress, bool converged);
+
+  enum class Verdict { Continue, Remedied, Cycle };
+  // After an update from `before` (left with residual `left_at`) to `now` (residual
+  // `residual_now`): Cycle when `now` recurs without progress and no remedy is left.
+  Verdict after_update(const std::vector<char>& before, const std::vector<char>& now, double left_at,
+                       double residual_now);
+
+  double gate() const { return gate_; }
+  int remedies_used() const { return remedies_; }
+
+private:
+  ActiveSetSettings settings_;
+  double gate_;
+  int held_ = 0;
+  int remedies_ = 0;
+  std::map<std::vector<char>, double> seen_;  // states left, with the residual when they were left
+};
+
+}  // namespace stiction::nonlinear

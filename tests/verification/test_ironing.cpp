@@ -1,0 +1,66 @@
+// The shallow ironing (built-in scenes ironing-2d and ironing-2d-frictionless, level 0):
+// the force on the indenter at the end of the pressing phase against the published band,
+// and the contact-state gate of the Newton driver that makes its first contact converge.
+#include <gtest/gtest.h>
+
+#include "builtin_scenes.hpp"
+#include "registry.hpp"
+#include "support/solve_scene.hpp"
+
+namespace stiction::test {
+namespace {
+
+struct IroningRun {
+  std::unique_ptr<scene::Scene> scene;
+  std::vector<nonlinear::StepResult> steps;
+};
+
+IroningRun run_until(const std::string& text, double until, const std::function<void(scene::Scene&)>& adjust = {}) {
+  IroningRun r;
+  r.scene = scene::build_scene(text, "ironing", ".", 0);
+  if (adjust) adjust(*r.scene);
+  auto solver = solvers::create_solver("lu-mumps", PETSC_COMM_WORLD);
+  nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, r.scene->problem, r.scene->newton, *solver);
+  r.steps = newton.run({}, 1, r.scene->problem.step_reaching(until));
+  return r;
+}
+
+// Published band for the force on the indenter at t = 1, per unit thickness, with friction
+// 0.3 (the summary of Yang, Laursen & Meng 2005 and the later ironing benchmarks):
+// vertical 268-332, horizontal 55-71. The force is the reaction on the indenter's top (F2),
+// which the multiplier's integral (F3) must match.
+TEST(Ironing, ForceOnTheIndenterAfterPressingLiesInThePublishedBand) {
+  const IroningRun r = run_until(harness::builtin_scenes().at("ironing-2d"), 1.0);
+  ASSERT_TRUE(r.steps.back().converged()) << r.steps.back().detail;
+  ASSERT_DOUBLE_EQ(r.steps.back().time, 1.0);
+  const auto reaction = r.steps.back().reactions.at("indenter/top");
+  const auto contact = r.steps.back().contact.at(0).force;  // on the slave (the indenter)
+  EXPECT_GE(-reaction[1], 268.0);
+  EXPECT_LE(-reaction[1], 332.0);
+  EXPECT_GE(std::abs(reaction[0]), 55.0);
+  EXPECT_LE(std::abs(reaction[0]), 71.0);
+  for (int k = 0; k < 2; ++k) EXPECT_NEAR(contact[k], -reaction[k], 1e-6 * std::abs(reaction[1])) << k;
+}
+
+// First contact of the frictionless ironing (t = 0.3): with the states updated after every
+// linear solve (the paper's rule, state_update_tolerance = 0) a node at the edge of the
+// contact zone enters and leaves in turn and the step stops with an active-set cycle; with
+// the default gate the steps converge. Cut-backs are off to see the raw method.
+TEST(Ironing, StateUpdateGateRemovesTheFirstContactCycle) {
+  const std::string text = harness::builtin_scenes().at("ironing-2d-frictionless");
+  const IroningRun gated = run_until(text, 0.4, [](scene::Scene& s) { s.newton.max_cuts = 0; });
+  ASSERT_EQ(gated.steps.size(), 4u);
+  for (const auto& step : gated.steps) EXPECT_TRUE(step.converged()) << step.step << ": " << step.detail;
+  EXPECT_GT(gated.steps.back().contact.at(0).slip, 4);
+
+  const IroningRun every_solve = run_until(text, 0.4, [](scene::Scene& s) {
+    s.newton.max_cuts = 0;
+    s.newton.active_set.update_tolerance = 0;
+    s.newton.active_set.cycle_remedies = 0;
+  });
+  EXPECT_FALSE(every_solve.steps.back().converged());
+  EXPECT_EQ(every_solve.steps.back().reason, nonlinear::NewtonReason::DivergedActiveSetCycle);
+}
+
+}  // namespace
+}  // namespace stiction::test
