@@ -106,6 +106,8 @@ int main(int argc, char** argv) {
   solve_cmd->add_option("--until", solve.until, "stop after the load step that reaches this pseudo-time")
       ->check(CLI::NonNegativeNumber);
   solve_cmd->add_flag("--quick", solve.quick, "the scene's short version: stop at its load.quick_until");
+  solve_cmd->add_option("--restart", solve.restart_dir,
+                        "continue a failed or killed run from DIR/checkpoint.bin (output appended in DIR unless --out)");
   harness::ReplayOptions replay;
   auto* replay_cmd = app.add_subcommand("replay", "solve recorded Newton systems with a backend");
   replay_cmd->add_option("record", replay.record_dir, "folder written by `stiction solve --record`")->required();

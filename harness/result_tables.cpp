@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "common/error.hpp"
+#include "contact/contact_state.hpp"
 
 namespace stiction::harness {
 
@@ -18,11 +19,24 @@ std::vector<std::pair<std::string, std::string>> traction_columns(const scene::S
   return out;
 }
 
+// Opens a table (appending to a non-empty file when asked) and writes the header comment;
+// true when the column line is still to be written.
+bool open_table(std::ofstream& out, const std::string& path, const std::string& header_comment, bool append) {
+  bool had_rows = false;
+  if (append) {
+    std::ifstream existing(path);
+    had_rows = existing && existing.peek() != std::ifstream::traits_type::eof();
+  }
+  out.open(path, had_rows ? std::ios::app : std::ios::trunc);
+  if (!out) throw Error(fmt::format("cannot write '{}'", path));
+  out << header_comment;
+  return !had_rows;
+}
+
 }  // namespace
 
-StepTable::StepTable(const std::string& path, const std::string& header_comment, const scene::Scene& s) : out_(path) {
-  if (!out_) throw Error(fmt::format("cannot write '{}'", path));
-  out_ << header_comment;
+StepTable::StepTable(const std::string& path, const std::string& header_comment, const scene::Scene& s, bool append) {
+  if (!open_table(out_, path, header_comment, append)) return;
   // One row per load increment: `time` is the pseudo-time it ends at, `cut` how many times
   // its step's increment was halved, `retried` marks a failed attempt retried over half of it.
   out_ << "step,time,cut,retried,converged,reason,newton_iterations,initial_residual,reference_residual,final_residual,"
@@ -86,10 +100,51 @@ void StepTable::add(const nonlinear::StepResult& r, const scene::Scene& s) {
   out_.flush();
 }
 
-IterationTable::IterationTable(const std::string& path, const std::string& header_comment, bool contact)
-    : out_(path), contact_(contact) {
-  if (!out_) throw Error(fmt::format("cannot write '{}'", path));
-  out_ << header_comment;
+std::vector<std::pair<std::string, std::vector<nonlinear::MultiplierNode>>> multiplier_nodes(
+    const scene::Scene& s, double t, const std::vector<double>& u, const std::vector<double>& lambda) {
+  std::vector<std::pair<std::string, std::vector<nonlinear::MultiplierNode>>> out;
+  size_t offset = 0;
+  for (const auto* c : s.problem.constraints) {
+    out.emplace_back(c->name(), c->nodes(t, u, lambda.data() + offset));
+    offset += static_cast<size_t>(c->n_multipliers());
+  }
+  return out;
+}
+
+ContactTable::ContactTable(const std::string& path, const std::string& header_comment, int dim, bool append)
+    : dim_(dim) {
+  if (!open_table(out_, path, header_comment, append)) return;
+  // gap: mean normal gap gn_i / m_i (negative: penetration); lambda: the traction on the
+  // slave (lambda_n > 0 presses); state: inactive, stick or slip.
+  out_ << "step,time,pair,node,vertex";
+  for (int k = 0; k < dim_; ++k) out_ << fmt::format(",{}", "xyz"[k]);
+  out_ << ",gap";
+  for (int k = 0; k < dim_; ++k) out_ << fmt::format(",lambda_{}", "xyz"[k]);
+  out_ << ",lambda_n";
+  for (int k = 0; k < dim_; ++k) out_ << fmt::format(",lambda_t_{}", "xyz"[k]);
+  out_ << ",state\n";
+  out_.flush();
+}
+
+void ContactTable::add(const nonlinear::StepResult& r, const scene::Scene& s, const std::vector<double>& u,
+                       const std::vector<double>& lambda) {
+  for (const auto& [pair, nodes] : multiplier_nodes(s, r.time, u, lambda))
+    for (size_t i = 0; i < nodes.size(); ++i) {
+      const auto& n = nodes[i];
+      out_ << fmt::format("{},{:.10g},{},{},{}", r.step, r.time, pair, i, n.vertex);
+      for (int k = 0; k < dim_; ++k) out_ << fmt::format(",{:.10e}", n.position[k]);
+      out_ << fmt::format(",{:.6e}", n.gap);
+      for (int k = 0; k < dim_; ++k) out_ << fmt::format(",{:.10e}", n.multiplier[k]);
+      out_ << fmt::format(",{:.10e}", n.normal);
+      for (int k = 0; k < dim_; ++k) out_ << fmt::format(",{:.10e}", n.tangential[k]);
+      out_ << "," << contact::to_string(static_cast<contact::NodeState>(n.state)) << "\n";
+    }
+  out_.flush();
+}
+
+IterationTable::IterationTable(const std::string& path, const std::string& header_comment, bool contact, bool append)
+    : contact_(contact) {
+  if (!open_table(out_, path, header_comment, append)) return;
   // residual: the free residual after the update; the linear columns describe the solve
   // that produced the update.
   out_ << "step,time,iteration,residual,step_length,krylov_iterations,linear_reason,linear_relative_residual,"

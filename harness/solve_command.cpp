@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "builtin_scenes.hpp"
+#include "checkpoint.hpp"
 #include "common/error.hpp"
 #include "ksp_solver.hpp"
 #include "registry.hpp"
@@ -24,7 +25,16 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   auto scene = open_scene(o.scene, o.level);
   if (!o.forcing.empty()) scene->newton.forcing = nonlinear::forcing_from_string(o.forcing);
   auto solver = solvers::create_solver(o.solver, PETSC_COMM_WORLD);
-  const std::string out_dir = o.out_dir.empty() ? fmt::format("out/{}-L{}", scene->name, scene->level) : o.out_dir;
+  const bool restart = !o.restart_dir.empty();
+  std::string out_dir = o.out_dir.empty() ? fmt::format("out/{}-L{}", scene->name, scene->level) : o.out_dir;
+  if (restart && o.out_dir.empty()) out_dir = o.restart_dir;
+  Checkpoint resume;
+  if (restart) {
+    resume = read_checkpoint(o.restart_dir + "/checkpoint.bin");
+    if (resume.scene != scene->name || resume.level != scene->level)
+      throw Error(fmt::format("checkpoint in '{}' is of scene '{}' level {}, not '{}' level {}", o.restart_dir,
+                              resume.scene, resume.level, scene->name, scene->level));
+  }
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);
   if (ec) throw Error(fmt::format("cannot create output directory '{}': {}", out_dir, ec.message()));
@@ -41,17 +51,25 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   header += fmt::format("# solver: {}; newton atol {:g}, rtol {:g}, max_iterations {}, forcing {}\n", o.solver,
                         scene->newton.atol, scene->newton.rtol, scene->newton.max_iterations,
                         nonlinear::to_string(scene->newton.forcing));
+  if (restart)
+    header += fmt::format("# restarted from '{}' after load step {} (t = {:g})\n", o.restart_dir, resume.state.step,
+                          resume.state.time);
   if (!o.quiet) fmt::print(stderr, "{}", header);
 
   std::unique_ptr<StepTable> table;
   std::unique_ptr<IterationTable> iteration_table;
+  std::unique_ptr<ContactTable> contact_table;
   if (scene->output.csv) {
-    table = std::make_unique<StepTable>(out_dir + "/steps.csv", header, *scene);
-    iteration_table =
-        std::make_unique<IterationTable>(out_dir + "/iterations.csv", header, !scene->problem.constraints.empty());
+    if (!scene->problem.constraints.empty())
+      contact_table = std::make_unique<ContactTable>(out_dir + "/contact.csv", header, scene->mesh.dim, restart);
+    table = std::make_unique<StepTable>(out_dir + "/steps.csv", header, *scene, restart);
+    iteration_table = std::make_unique<IterationTable>(out_dir + "/iterations.csv", header,
+                                                       !scene->problem.constraints.empty(), restart);
   }
   PvdCollection pvd(out_dir + "/solution.pvd");
   nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, scene->problem, scene->newton, *solver);
+  if (restart) newton.restore(resume.state);
+  const int first_step = restart ? resume.state.step + 1 : 1;
   if (!o.record_dir.empty()) {
     const RecordContext context{scene->name, scene->level, o.solver, info};
     newton.set_system_observer([&, context](const nonlinear::NewtonSystem& sys, Vec du,
@@ -65,9 +83,11 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   auto results = newton.run([&](const nonlinear::StepResult& r) {
     if (table) table->add(r, *scene);
     if (iteration_table) iteration_table->add(r);
+    if (r.completes_step) write_checkpoint(out_dir + "/checkpoint.bin", {scene->name, scene->level, newton.state()});
+    if (contact_table && r.completes_step) contact_table->add(r, *scene, newton.displacement(), newton.multipliers());
     if (scene->output.vtu && o.write_vtu && r.completes_step) {
       const std::string name = fmt::format("step-{:03d}.vtu", r.step);
-      write_vtu(out_dir + "/" + name, *scene, newton.displacement());
+      write_vtu(out_dir + "/" + name, *scene, newton.displacement(), newton.multipliers(), r.time);
       pvd.add(r.time, name);
     }
     if (!o.quiet)
@@ -76,7 +96,11 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
                  r.step, scene->problem.n_steps(), r.cut > 0 ? fmt::format(" (increment / {})", 1 << r.cut) : "",
                  r.time, nonlinear::to_string(r.reason), r.iterations.size(), r.final_residual, r.reference_residual,
                  r.wall_seconds, r.retried ? "; retried over half the increment" : "");
-  }, 1, last_step);
+  }, first_step, last_step);
+  if (results.empty()) {
+    if (!o.quiet) fmt::print(stderr, "nothing to do: the run had completed load step {}\n", first_step - 1);
+    return;
+  }
   {
     std::ofstream desc(out_dir + "/solver.txt");
     desc << solver->describe();

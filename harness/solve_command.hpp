@@ -1,6 +1,7 @@
 #pragma once
-// `stiction solve`: one scene with one backend; VTU/PVD per load step and a CSV of
-// per-step quantities (Newton iterations, residuals, linear-solver figures, reactions).
+// `stiction solve`: one scene with one backend; VTU/PVD per load step, CSVs of per-step
+// quantities (Newton iterations, residuals, linear-solver figures, reactions), of Newton
+// iterations and of contact nodes, and a checkpoint after every completed load step.
 #include <string>
 
 #include "run_info.hpp"
@@ -18,6 +19,7 @@ struct SolveOptions {
   std::string forcing;           // overrides the scene's [newton] forcing when set
   double until = -1;             // stop after the load step that reaches this pseudo-time (< 0: the end)
   bool quick = false;            // stop at the scene's quick_until (the suite's short version)
+  std::string restart_dir;       // continue from <dir>/checkpoint.bin (output defaults to <dir>, appended)
   std::string petsc_options;     // the PETSc options given on the command line, for reports
   bool quiet = false;
 };

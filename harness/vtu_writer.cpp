@@ -7,6 +7,7 @@
 
 #include "common/error.hpp"
 #include "fem/elasticity_assembly.hpp"
+#include "result_tables.hpp"
 
 namespace stiction::harness {
 
@@ -15,7 +16,8 @@ double von_mises(const double* s) {
   return std::sqrt(0.5 * (a * a + b * b + c * c) + 3 * (s[1] * s[1] + s[5] * s[5] + s[2] * s[2]));
 }
 
-void write_vtu(const std::string& path, const scene::Scene& scene, const std::vector<double>& u) {
+void write_vtu(const std::string& path, const scene::Scene& scene, const std::vector<double>& u,
+               const std::vector<double>& lambda, double t) {
   const fem::FieldSpace& space = *scene.space;
   const int d = space.dim(), nn = space.n_nodes(), nc = scene.mesh.n_cells(), npc = space.nodes_per_cell();
   const std::vector<double> nodal = space.nodal_values(u);
@@ -53,6 +55,24 @@ void write_vtu(const std::string& path, const scene::Scene& scene, const std::ve
     if (space.has_pressure()) {
       out.print("</DataArray>\n<DataArray type=\"Float64\" Name=\"pressure\" format=\"ascii\">\n");
       for (double p : space.nodal_pressure(u)) out.print("{:.12g}\n", p);
+    }
+    if (!scene.problem.constraints.empty() && !lambda.empty()) {
+      std::vector<int> state(nn, -1);
+      std::vector<double> multiplier(static_cast<size_t>(nn) * 3, 0.0), normal(nn, 0.0);
+      for (const auto& [pair, nodes] : multiplier_nodes(scene, t, u, lambda))
+        for (const auto& node : nodes) {  // a slave vertex is point `vertex` (vertices come first)
+          state[node.vertex] = node.state;
+          normal[node.vertex] = node.normal;
+          for (int c = 0; c < 3; ++c) multiplier[static_cast<size_t>(node.vertex) * 3 + c] = node.multiplier[c];
+        }
+      out.print("</DataArray>\n<DataArray type=\"Float64\" Name=\"contact_multiplier\" NumberOfComponents=\"3\" "
+                "format=\"ascii\">\n");
+      for (int n = 0; n < nn; ++n)
+        out.print("{:.12g} {:.12g} {:.12g}\n", multiplier[3 * n], multiplier[3 * n + 1], multiplier[3 * n + 2]);
+      out.print("</DataArray>\n<DataArray type=\"Float64\" Name=\"contact_pressure\" format=\"ascii\">\n");
+      for (double p : normal) out.print("{:.12g}\n", p);
+      out.print("</DataArray>\n<DataArray type=\"Int32\" Name=\"contact_state\" format=\"ascii\">\n");
+      for (int s : state) out.print("{}\n", s);
     }
     out.print("</DataArray>\n</PointData>\n<CellData>\n"
               "<DataArray type=\"Float64\" Name=\"cauchy_stress\" NumberOfComponents=\"9\" format=\"ascii\">\n");

@@ -12,8 +12,11 @@ namespace stiction::harness {
 double von_mises(const double* sigma);
 
 // Writes displacement and, for mixed bodies, pressure (point data) and Cauchy stress, von Mises, body id (cell data, at
-// cell centroids) for the coefficient vector u.
-void write_vtu(const std::string& path, const scene::Scene& scene, const std::vector<double>& u);
+// cell centroids) for the coefficient vector u; with contact, at the slave nodes (pseudo-time t, multipliers
+// lambda) the multiplier (traction on the slave), its normal part lambda_n and the contact state (0 inactive,
+// 1 stick, 2 slip; -1 at every point that carries no multiplier).
+void write_vtu(const std::string& path, const scene::Scene& scene, const std::vector<double>& u,
+               const std::vector<double>& lambda = {}, double t = 0);
 
 class PvdCollection {
 public:

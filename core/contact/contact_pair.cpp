@@ -175,6 +175,31 @@ std::vector<double> ContactPair::mean_normal_gaps(double t, const std::vector<do
   return gaps;
 }
 
+std::vector<nonlinear::MultiplierNode> ContactPair::nodes(double t, const std::vector<double>& u,
+                                                         const double* lambda) const {
+  std::vector<NodeKinematics> kin;
+  compute_kinematics(t, u, nullptr, nullptr, nullptr, 0, false, kin);
+  std::vector<nonlinear::MultiplierNode> out(slave_.n_nodes());
+  for (int i = 0; i < slave_.n_nodes(); ++i) {
+    nonlinear::MultiplierNode& node = out[i];
+    const int v = slave_.vertices[i];
+    node.vertex = v;
+    Vec3 lam = Vec3::Zero();
+    for (int c = 0; c < dim_; ++c) {
+      // Vertex v is node v of the space: its coefficients are its displacement.
+      node.position[c] = slave_.reference_position[i][c] + u[static_cast<size_t>(v) * dim_ + c];
+      lam[c] = lambda[i * dim_ + c];
+    }
+    const Vec3 n = kin[i].n;
+    node.gap = kin[i].admissible ? n.dot(kin[i].G) / slave_.lumped_mass[i] : std::numeric_limits<double>::infinity();
+    node.normal = n.dot(lam);
+    const Vec3 lt = lam - n * node.normal;
+    for (int c = 0; c < 3; ++c) node.multiplier[c] = lam[c], node.tangential[c] = lt[c];
+    node.state = static_cast<char>(state_[i]);
+  }
+  return out;
+}
+
 std::vector<char> ContactPair::states() const {
   std::vector<char> s(state_.size());
   for (size_t i = 0; i < s.size(); ++i) s[i] = static_cast<char>(state_[i]);

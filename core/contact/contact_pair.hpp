@@ -90,6 +90,8 @@ public:
   void schur_mass(nonlinear::SparseEntries& out, PetscInt offset) const override;
   void schur_stiffness(nonlinear::SparseEntries& out, PetscInt offset) const override;
   nonlinear::ConstraintSummary summary(const double* lambda) const override;
+  std::vector<nonlinear::MultiplierNode> nodes(double t, const std::vector<double>& u,
+                                              const double* lambda) const override;
   std::vector<double> save_state() const override;
   void restore_state(const std::vector<double>& saved) override;
   std::vector<std::pair<std::string, int>> surfaces() const override { return {{"slave", slave_tag_}}; }

@@ -26,6 +26,12 @@ void gmsh_begin() {
   gmsh::option::setNumber("General.Terminal", 0);
   gmsh::option::setNumber("General.Verbosity", 1);
   gmsh::option::setNumber("General.NumThreads", 1);  // deterministic meshes
+  // Options outlive the model: reset the ones a generator changes to Gmsh's defaults, or a
+  // sphere octant (sizes from its field only) left every later polygon in the process
+  // meshed at uniform h, its point sizes ignored.
+  gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 1);
+  gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 1);
+  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
   gmsh::clear();
 }
 

@@ -37,6 +37,18 @@ struct ConstraintSummary {
   std::array<double, 3> force{0, 0, 0};  // integral of lambda over the slave surface (F3)
 };
 
+// One multiplier node as a user checks contact: where it is, its gap, its multiplier and
+// state (contact.csv and the VTU output).
+struct MultiplierNode {
+  int vertex = -1;                          // mesh vertex of the node
+  std::array<double, 3> position{0, 0, 0};  // current position x = X + u
+  double gap = 0;                           // mean normal gap gn_i / m_i (negative: penetration)
+  std::array<double, 3> multiplier{0, 0, 0};  // lambda_i, the traction on the slave
+  double normal = 0;                        // lambda_n = n . lambda (positive presses)
+  std::array<double, 3> tangential{0, 0, 0};  // lambda_t = lambda - n lambda_n
+  char state = 0;                           // 0 inactive, 1 stick, 2 slip
+};
+
 class MultiplierConstraint {
 public:
   virtual ~MultiplierConstraint() = default;
@@ -76,6 +88,9 @@ public:
   // The boundary facets the constraint acts on, by role ("slave", "master"), for the
   // traction integrals the Newton driver reports per load step (paper's F4, F5).
   virtual std::vector<std::pair<std::string, int>> surfaces() const { return {}; }
+  // Every multiplier node at (t, u, lambda) for reports; lambda points at this constraint's
+  // multipliers.
+  virtual std::vector<MultiplierNode> nodes(double t, const std::vector<double>& u, const double* lambda) const = 0;
 };
 
 }  // namespace stiction::nonlinear

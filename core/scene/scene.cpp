@@ -134,7 +134,7 @@ struct Schemas {
                {"state_update_tolerance", VT::Float,
                 "contact states change only at iterates that solve their states to this relative residual (0: after "
                 "every solve, as the paper)",
-                false, 1e-3},
+                false, 1.0},
                {"max_held_iterations", VT::Integer, "Newton iterations the contact states may be held before an update",
                 false, std::int64_t{8}},
                {"cycle_remedies", VT::Integer,
@@ -530,6 +530,17 @@ std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& o
       const int axis = c[0] - 'x';
       if (axis >= dim) throw Error(fmt::format("{}: {}: component '{}' in a {}D scene", origin, what, c, dim));
       bc.components.push_back(axis);
+    }
+    // Two conditions on one boundary (x in one, y in another) report their reactions apart:
+    // the second and later take their components into their name ("indenter/top:y").
+    const auto taken = [&](const std::string& name) {
+      return std::any_of(P.dirichlet.begin(), P.dirichlet.end(), [&](const auto& o) { return o.name == name; });
+    };
+    if (taken(bc.name)) {
+      std::string base = bc.name + ":";
+      for (const auto& c : comps) base += c;
+      bc.name = base;
+      for (int n = 2; taken(bc.name); ++n) bc.name = fmt::format("{}#{}", base, n);
     }
     // The function gives the listed components; the field spreads them over all dim.
     auto listed = load_function(*d, P.step_times, "value", "table", value, comps.size(), origin, what);

@@ -51,7 +51,7 @@ TEST(Ironing, StateUpdateGateRemovesTheFirstContactCycle) {
   const IroningRun gated = run_until(text, 0.4, [](scene::Scene& s) { s.newton.max_cuts = 0; });
   ASSERT_EQ(gated.steps.size(), 4u);
   for (const auto& step : gated.steps) EXPECT_TRUE(step.converged()) << step.step << ": " << step.detail;
-  EXPECT_GT(gated.steps.back().contact.at(0).slip, 4);
+  EXPECT_GE(gated.steps.back().contact.at(0).slip, 4) << "the indenter presses over several nodes";
 
   const IroningRun every_solve = run_until(text, 0.4, [](scene::Scene& s) {
     s.newton.max_cuts = 0;

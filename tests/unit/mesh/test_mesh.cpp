@@ -177,6 +177,22 @@ TEST(SphereOctant, VolumeFacesAndGrading) {
   EXPECT_THROW(generate_sphere_octant(spec), Error);
 }
 
+// Gmsh's options outlive its model: a graded polygon meshes alike before and after a sphere
+// octant (whose generator turns sizing from points off) in the same process.
+TEST(Generators, PolygonGradingSurvivesASphereOctant) {
+  PolygonSpec polygon;
+  polygon.xy = {0.0, 0.0, 4.0, 0.0, 4.0, 1.0, 0.0, 1.0};
+  polygon.names = {"base", "right", "top", "left"};
+  polygon.h = 0.5;
+  polygon.point_sizes = {0.5, 0.5, 0.05, 0.05};
+  const int before = generate_polygon(polygon).n_cells();
+  SphereOctantSpec octant;
+  octant.radius = 1.0, octant.h = 0.5, octant.contact_size = 0.2;
+  generate_sphere_octant(octant);
+  EXPECT_EQ(generate_polygon(polygon).n_cells(), before);
+  EXPECT_GT(before, 2 * 4 * 2 * 2) << "the point sizes grade the mesh well below h";
+}
+
 TEST(GmshRead, MissingFileIsAnError) {
   EXPECT_THROW(read_msh("/nonexistent/mesh.msh"), Error);
 }

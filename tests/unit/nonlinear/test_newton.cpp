@@ -290,7 +290,9 @@ TEST(Newton, CutBackRetriesAFailedStepAndReachesTheSameState) {
   for (const auto& r : parts) {
     retried += r.retried;
     completed += r.completes_step;
-    if (r.retried) EXPECT_FALSE(r.converged());
+    if (r.retried) {
+      EXPECT_FALSE(r.converged());
+    }
   }
   EXPECT_GE(retried, 1);
   EXPECT_EQ(completed, 2);

@@ -1,0 +1,117 @@
+#include "checkpoint.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+
+#include "common/error.hpp"
+
+namespace stiction::harness {
+
+namespace {
+
+constexpr char kMagic[8] = {'S', 'T', 'I', 'C', 'K', 'P', 'T', '1'};
+
+class Writer {
+public:
+  explicit Writer(std::ofstream& out) : out_(out) {}
+  void u64(std::uint64_t v) { out_.write(reinterpret_cast<const char*>(&v), sizeof v); }
+  void f64(double v) { out_.write(reinterpret_cast<const char*>(&v), sizeof v); }
+  void text(const std::string& s) {
+    u64(s.size());
+    out_.write(s.data(), static_cast<std::streamsize>(s.size()));
+  }
+  void doubles(const std::vector<double>& v) {
+    u64(v.size());
+    out_.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(double)));
+  }
+
+private:
+  std::ofstream& out_;
+};
+
+class Reader {
+public:
+  Reader(std::ifstream& in, std::string path) : in_(in), path_(std::move(path)) {}
+  std::uint64_t u64() {
+    std::uint64_t v = 0;
+    read(&v, sizeof v);
+    return v;
+  }
+  double f64() {
+    double v = 0;
+    read(&v, sizeof v);
+    return v;
+  }
+  std::string text() {
+    std::string s(checked_size(u64(), 1), '\0');
+    read(s.data(), s.size());
+    return s;
+  }
+  std::vector<double> doubles() {
+    std::vector<double> v(checked_size(u64(), sizeof(double)));
+    read(v.data(), v.size() * sizeof(double));
+    return v;
+  }
+
+private:
+  // A size read from the file that could not fit in it marks a damaged file.
+  size_t checked_size(std::uint64_t n, size_t unit) {
+    if (n > (std::uint64_t{1} << 40) / unit) fail();
+    return static_cast<size_t>(n);
+  }
+  void read(void* p, size_t bytes) {
+    in_.read(static_cast<char*>(p), static_cast<std::streamsize>(bytes));
+    if (!in_) fail();
+  }
+  [[noreturn]] void fail() const { throw Error(fmt::format("checkpoint '{}' is truncated or damaged", path_)); }
+  std::ifstream& in_;
+  std::string path_;
+};
+
+}  // namespace
+
+void write_checkpoint(const std::string& path, const Checkpoint& c) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    if (!out) throw Error(fmt::format("cannot write checkpoint '{}'", path));
+    out.write(kMagic, sizeof kMagic);
+    Writer w(out);
+    w.text(c.scene);
+    w.u64(static_cast<std::uint64_t>(c.level));
+    w.u64(static_cast<std::uint64_t>(c.state.step));
+    w.f64(c.state.time);
+    w.doubles(c.state.u);
+    w.doubles(c.state.lambda);
+    w.u64(c.state.constraints.size());
+    for (const auto& s : c.state.constraints) w.doubles(s);
+    if (!out) throw Error(fmt::format("cannot write checkpoint '{}'", path));
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw Error(fmt::format("cannot write checkpoint '{}'", path));
+}
+
+Checkpoint read_checkpoint(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(fmt::format("no checkpoint '{}' to restart from", path));
+  char magic[sizeof kMagic];
+  in.read(magic, sizeof magic);
+  if (!in || !std::equal(magic, magic + sizeof magic, kMagic))
+    throw Error(fmt::format("'{}' is not a stiction checkpoint", path));
+  Reader r(in, path);
+  Checkpoint c;
+  c.scene = r.text();
+  c.level = static_cast<int>(r.u64());
+  c.state.step = static_cast<int>(r.u64());
+  c.state.time = r.f64();
+  c.state.u = r.doubles();
+  c.state.lambda = r.doubles();
+  const std::uint64_t n = r.u64();
+  if (n > 1000) throw Error(fmt::format("checkpoint '{}' is truncated or damaged", path));
+  for (std::uint64_t k = 0; k < n; ++k) c.state.constraints.push_back(r.doubles());
+  return c;
+}
+
+}  // namespace stiction::harness
