@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "csv_table.hpp"
+
 #ifndef STICTION_BINARY
 #error "STICTION_BINARY (path of the stiction executable) must be defined by the build"
 #endif
@@ -276,6 +278,52 @@ TEST_F(StictionCli, ValidRunWritesOutput) {
   EXPECT_TRUE(run.error_lines().empty()) << run.err;
   for (const char* file : {"steps.csv", "solution.pvd", "step-004.vtu"})
     EXPECT_TRUE(fs::is_regular_file(dir_ / "out" / file)) << file << " not written";
+}
+
+// A run stopped after two of its four load steps (--until) and restarted from its checkpoint
+// ends where an uninterrupted run ends, with the rows of both parts in one steps.csv.
+TEST_F(StictionCli, RestartContinuesFromTheLastCompletedStep) {
+  const CliRun whole = CliRun::of({"solve", "cantilever-2d", "--quiet", "--no-vtu", "--out", (dir_ / "whole").string()},
+                                  dir_);
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  const CliRun first = solve("cantilever-2d", {"--no-vtu", "--until", "0.5"});
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  ASSERT_EQ(stiction::harness::read_csv((dir_ / "out" / "steps.csv").string()).rows.size(), 2u);
+  const CliRun rest = solve("cantilever-2d", {"--no-vtu", "--restart", (dir_ / "out").string()});
+  ASSERT_EQ(rest.exit_code, 0) << rest.err;
+  const auto parts = stiction::harness::read_csv((dir_ / "out" / "steps.csv").string()).rows;
+  const auto straight = stiction::harness::read_csv((dir_ / "whole" / "steps.csv").string()).rows;
+  ASSERT_EQ(parts.size(), 4u);
+  ASSERT_EQ(straight.size(), 4u);
+  EXPECT_EQ(parts.back().at("step"), "4");
+  for (const char* column : {"reaction_beam/xmin_x", "reaction_beam/xmin_y"}) {
+    const double a = std::stod(parts.back().at(column)), b = std::stod(straight.back().at(column));
+    EXPECT_NEAR(a, b, 1e-8 * std::abs(b)) << column;
+  }
+  expect_error(solve("sliding-block-2d", {"--no-vtu", "--restart", (dir_ / "out").string()}), 2,
+               {"checkpoint", "cantilever-2d", "sliding-block-2d"});
+  expect_error(solve("cantilever-2d", {"--restart", (dir_ / "nowhere").string()}), 2, {"no checkpoint", "nowhere"});
+}
+
+// With contact, contact.csv holds a row per multiplier node and load step, and the VTU the
+// contact fields; two conditions on one boundary get two sets of reaction columns.
+TEST_F(StictionCli, ContactRunWritesContactNodesAndFields) {
+  const CliRun run = solve("sliding-block-2d");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto nodes = stiction::harness::read_csv((dir_ / "out" / "contact.csv").string());
+  ASSERT_EQ(nodes.rows.size(), 3u * 11u) << "three load steps, eleven slave nodes";
+  for (const char* column : {"x", "y", "gap", "lambda_n", "lambda_t_x", "state"})
+    EXPECT_TRUE(nodes.rows.front().count(column)) << column;
+  int slipping = 0;
+  for (const auto& row : nodes.rows)
+    if (row.at("step") == "3") slipping += row.at("state") == "slip";
+  EXPECT_EQ(slipping, 11) << "the whole contact slides in the last step";
+  const std::string vtu = read_file(dir_ / "out" / "step-003.vtu");
+  for (const char* field : {"contact_multiplier", "contact_pressure", "contact_state"})
+    EXPECT_NE(vtu.find(field), std::string::npos) << field;
+  const auto steps = stiction::harness::read_csv((dir_ / "out" / "steps.csv").string());
+  EXPECT_TRUE(steps.rows.front().count("reaction_block/ymax_y"));
+  EXPECT_TRUE(steps.rows.front().count("reaction_block/ymax:x_x")) << "the second condition on ymax";
 }
 
 }  // namespace
