@@ -593,7 +593,9 @@ std::vector<StepResult> QuasiStaticSolver::run(const std::function<void(const St
       StepResult r = solve_increment(k, t);
       r.cut = cut;
       if (!r.converged()) {
-        r.retried = cut < settings_.max_cuts;
+        // A linear solver that cannot solve the system (boomeramg on an indefinite one) is
+        // not helped by a smaller increment: only the nonlinear failures are retried.
+        r.retried = cut < settings_.max_cuts && r.reason != NewtonReason::DivergedLinearSolver;
         report(r);
         if (!r.retried) return all;
         restore(saved);

@@ -17,7 +17,7 @@
 // states may change and when they cycle: active_set_monitor.hpp.
 //
 // Load increments (run): load step k goes from step_times[k-1] to step_times[k]. An increment
-// that fails is retried from the last converged state over half of it, down to max_cuts
+// that fails (but for a failed linear solve) is retried from the last converged state over half of it, down to max_cuts
 // halvings of the step; the reduced size carries over into the next steps and doubles after
 // two converged parts at one size (never past a step's end, which every step reaches
 // exactly). Every attempt, failed or not, reaches the caller as a StepResult.
