@@ -38,7 +38,7 @@ for scene in ironing-2d ironing-2d-frictionless; do
     label=$(basename "$dat" .dat)
     forces+=("'$dat' using 1:(\$5 == 1 ? \$3 : 1/0) with lines title '$label F_y'"
              "'$dat' using 1:(\$5 == 1 ? -\$2 : 1/0) with lines title '$label -F_x'")
-    newton+=("'$dat' using 1:4 with points pointtype 7 pointsize 0.3 title '$label'")
+    newton+=("'$dat' using 1:4 with impulses title '$label'")
   done
   [ ${#forces[@]} -gt 0 ] || continue
   gnuplot <<GNUPLOT
@@ -50,7 +50,7 @@ set ylabel 'force per unit thickness'
 set key left top
 set object 1 rectangle from 0.98,268 to 1.02,332 fillstyle empty border lc rgb 'red'
 set object 2 rectangle from 0.98,55 to 1.02,71 fillstyle empty border lc rgb 'red'
-set label 1 'published band at t = 1' at 1.03,300 textcolor rgb 'red'
+set label 1 'published band at t = 1 (mu = 0.3)' at 1.03,300 textcolor rgb 'red'
 plot $(IFS=,; echo "${forces[*]}")
 unset object 1
 unset object 2
