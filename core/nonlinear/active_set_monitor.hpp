@@ -19,6 +19,10 @@
 // the sphere on a flat block (tests/verification/test_master_point.cpp, paper rule 5 + 6):
 //   update_tolerance 1e-3: 6, 10 and 12;  0.1: 5, 9 and 9;  1 (default): 5, 7 and <= 8;
 //   0 (the paper): cycle at t = 0.3.
+// Its price where the paper's rule converged (level-0 iteration baseline, lu-mumps, Newton
+// iterations over all steps, paper -> gate): hertz-cylinder-2d 5 -> 6, hertz-cylinders-2d
+// 10 -> 11, hertz-sphere-3d 7 -> 8, hertz-spheres-3d 10 -> 11, sliding-block-2d 7 -> 8,
+// self-contact-2d 28 -> 31; state_update_tolerance = 0 restores the paper's Newton path.
 // Cycle: a set of states that recurs without the residual having fallen since it was last
 // left. The remedy (before the step gives up with DIVERGED_ACTIVE_SET_CYCLE) tightens the
 // gate by remedy_factor, so the next updates read better-converged iterates; cycle_remedies
