@@ -110,7 +110,7 @@ public:
   // Newton for an increment of load step `step` from the current state to pseudo-time t.
   StepResult solve_increment(int step, double t);
   // Steps first_step..last_step (-1: n_steps) with cut-backs; calls on_step after each
-  // attempt; stops at the first step that fails at max_cuts halvings.
+  // attempt; stops at the first step that fails at max_cuts halvings (or on a failed linear solve).
   std::vector<StepResult> run(const std::function<void(const StepResult&)>& on_step = {}, int first_step = 1,
                               int last_step = -1);
 
@@ -128,7 +128,7 @@ public:
   std::vector<double>& displacement() { return u_; }
   // Contact multipliers of every constraint, in order (empty without contact).
   const std::vector<double>& multipliers() const { return lambda_; }
-  // Full residual r(u) = f_int - f_ext at `step` (constrained rows included), and status.
+  // Full residual r(u) = f_int - f_ext at pseudo-time t (constrained rows included), and status.
   fem::InternalForceStatus residual(double t, const std::vector<double>& u, std::vector<double>& r) const;
   // The last assembled Newton system (for record/replay and tests).
   const NewtonSystem& system() const { return system_; }
@@ -146,7 +146,7 @@ private:
   fem::InternalForceStatus evaluate(double t, const std::vector<double>& u, const std::vector<double>& lambda,
                                     Residuals& r, bool elastic) const;
   int update_constraint_states(double t, const std::vector<double>& dlambda);
-  // Pieces of solve_step: this step's prescribed values (target_), the norm of the lifted
+  // Pieces of solve_increment: the increment's prescribed values (target_), the norm of the lifted
   // right side's free rows, the split of a Newton update into u (and p) and multipliers,
   // the backtracked step (u_ and lambda_ move only when it succeeds), and the norm of the
   // constraint forces in a residual.
@@ -179,7 +179,7 @@ private:
   std::vector<PetscInt> constrained_;         // sorted constrained dofs
   std::vector<char> is_constrained_;          // per dof
   std::vector<std::vector<int>> bc_nodes_;    // per Dirichlet condition
-  std::vector<double> target_;                // prescribed values, per constrained dof (this step)
+  std::vector<double> target_;                // prescribed values, per constrained dof (this increment)
   double time_ = 0;                           // pseudo-time of the current converged state
   double target_time_ = 0;                    // pseudo-time of the increment being solved
   int completed_step_ = 0;                    // the last load step completed
