@@ -46,9 +46,14 @@
 //     r_u -= B_int^T lambda - B_ext^T lambda, both integrated on the same segments.
 // Linearisation: exact, including the variation of the nodal normals, of the master point's
 // parameter eta (implicit function theorem on the projection or crossing equation) and of
-// B_ext; the moving ends of the 2D segments add no term because every integrand is
-// continuous across them (checked against finite differences in tests/unit/contact, 2D and
-// 3D). In 3D the residual is only C0 where a crossing passes a master edge (B_ext's shape
+// B_ext. The moving ends of the 2D segments are not differentiated: every integrand is
+// continuous across them, so they add no term to the exact integral, and none to the Gauss
+// sums when the integrands are polynomial (P1; checked against finite differences in
+// tests/unit/contact, 2D and 3D). At P2 they do: at a converged sliding state of ironing-2d
+// (friction 0.3, level 0, t = 1.06) directional differences disagree with the Jacobian by
+// 1% of its largest entry (22% in the x rows of two master vertices when only the master
+// moves), and agree to 1e-6 once the cuts are held fixed; frictional sliding then converges
+// only linearly (reports/README.md). In 3D the residual is only C0 where a crossing passes a master edge (B_ext's shape
 // functions have a kink there): Newton still converged quadratically on hertz-spheres-3d.
 #include <string>
 #include <vector>
