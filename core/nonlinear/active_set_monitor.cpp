@@ -19,8 +19,8 @@ ActiveSetMonitor::Verdict ActiveSetMonitor::after_update(const std::vector<char>
   if (seen == seen_.end() || residual_now < seen->second) return Verdict::Continue;
   if (remedies_ == settings_.cycle_remedies) return Verdict::Cycle;
   ++remedies_;
-  gate_ = (gate_ > 0 ? gate_ : settings_.update_tolerance > 0 ? settings_.update_tolerance : 1e-3) *
-          settings_.remedy_factor;
+  // gate_ is 0 only under the paper's rule (update_tolerance 0); a cycle then opens a gate.
+  gate_ = (gate_ > 0 ? gate_ : 1e-3) * settings_.remedy_factor;
   seen_.clear();
   return Verdict::Remedied;
 }

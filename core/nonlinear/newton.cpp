@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 
 #include "common/error.hpp"
 #include "fem/elasticity_assembly.hpp"
@@ -515,10 +514,10 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
       const double progress = std::max(r_free / res.reference_residual, r_c / std::max(c_reference, settings_.atol));
       states_checked = monitor.may_update(progress, converged_now);
       last_changes = 0;
-      if (!states_checked)
+      if (!states_checked) {
         for (size_t k = 0; k < problem_.constraints.size(); ++k)
           problem_.constraints[k]->states_held(lambda_.data() + constraint_offset_[k], dl.data() + constraint_offset_[k]);
-      if (states_checked) {
+      } else {
         const std::vector<char> before = constraint_states();
         last_changes = update_constraint_states(t, dl);
         if (last_changes > 0) {
