@@ -1,6 +1,8 @@
 #pragma once
 // ParaView output: one VTU per load step (quadratic cells for P2, with nodal values at
-// vertices and edge midpoints) and a PVD collection indexing them by load step.
+// vertices and edge midpoints) and a PVD collection indexing them by load step. The arrays
+// are zlib-compressed binary in the appended section (vtk_binary.hpp), or ASCII text when
+// the scene asks for `[output] vtu_format = "ascii"`.
 #include <string>
 #include <vector>
 

@@ -18,6 +18,7 @@ packages=(
   libfmt-dev
   libboost-dev
   nlohmann-json3-dev        # record/replay metadata
+  zlib1g-dev                # zlib: compressed binary VTU output
 )
 
 missing=()

@@ -143,6 +143,10 @@ struct Schemas {
                {"cycle_remedy_factor", VT::Float, "factor on state_update_tolerance per remedy", false, 1e-2}}};
     output = {"output",
               {{"vtu", VT::Boolean, "write a VTU per load step and a PVD collection", false, true},
+               {"vtu_format", VT::String,
+                "VTU arrays: zlib-compressed binary in the appended section (what ParaView writes), or ASCII "
+                "(for diffing and debugging)",
+                false, std::string("binary"), {"binary", "ascii"}},
                {"csv", VT::Boolean, "write per-step quantities as CSV", false, true}}};
     root = {"",
             {{"scene", VT::Table, "name and description", false, {}, {}, &scene_meta},
@@ -603,6 +607,7 @@ std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& o
                             origin));
   const toml::table& out = sub(root, "output");
   s.output.vtu = get_bool(out, S.output, "vtu");
+  s.output.vtu_format = get_string(out, S.output, "vtu_format") == "ascii" ? VtuFormat::Ascii : VtuFormat::Binary;
   s.output.csv = get_bool(out, S.output, "csv");
   return scene;
 }

@@ -17,8 +17,13 @@
 
 namespace stiction::scene {
 
+// How a VTU stores its arrays: zlib-compressed binary in VTK's appended section, or ASCII
+// (larger and slower, for diffing and debugging).
+enum class VtuFormat { Binary, Ascii };
+
 struct OutputSettings {
   bool vtu = true;  // VTU per load step + PVD collection
+  VtuFormat vtu_format = VtuFormat::Binary;
   bool csv = true;  // per-step quantities
 };
 
