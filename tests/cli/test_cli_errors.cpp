@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "csv_table.hpp"
+#include "vtu_reader.hpp"
 
 #ifndef STICTION_BINARY
 #error "STICTION_BINARY (path of the stiction executable) must be defined by the build"
@@ -324,6 +326,55 @@ TEST_F(StictionCli, ContactRunWritesContactNodesAndFields) {
   const auto steps = stiction::harness::read_csv((dir_ / "out" / "steps.csv").string());
   EXPECT_TRUE(steps.rows.front().count("reaction_block/ymax_y"));
   EXPECT_TRUE(steps.rows.front().count("reaction_block/ymax:x_x")) << "the second condition on ymax";
+}
+
+TEST_F(StictionCli, UnknownVtuFormatListsTheChoices) {
+  const auto scene = SceneVariant().append("\n[output]\nvtu_format = \"xml\"\n");
+  expect_error(solve_variant(scene, "vtu-format.toml"), 2, {"vtu-format.toml", "output.vtu_format", "'xml'", "accepted: binary, ascii"});
+}
+
+// The default VTU keeps every array zlib-compressed in the appended section (VTK's layout,
+// decoded by vtu_reader independently of the writer); decoded, it holds the values of the
+// same run written with `[output] vtu_format = "ascii"` (10 to 12 significant digits).
+TEST_F(StictionCli, BinaryVtuDecodesToTheAsciiValues) {
+  const auto run = [&](const SceneVariant& scene, const std::string& name) {
+    const CliRun r = CliRun::of(
+        {"solve", scene.write(dir_, name + ".toml").string(), "--quiet", "--out", (dir_ / name).string()}, dir_);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return dir_ / name / "step-004.vtu";
+  };
+  const fs::path binary_path = run(SceneVariant(), "binary");
+  const fs::path ascii_path = run(SceneVariant().append("\n[output]\nvtu_format = \"ascii\"\n"), "ascii");
+  stiction::test::VtuFile binary, ascii;
+  ASSERT_NO_THROW(binary = stiction::test::read_vtu(binary_path.string()));
+  ASSERT_NO_THROW(ascii = stiction::test::read_vtu(ascii_path.string()));
+
+  EXPECT_EQ(binary.attributes["header_type"], "UInt64");
+  EXPECT_EQ(binary.attributes["compressor"], "vtkZLibDataCompressor");
+  for (const auto& a : binary.arrays) EXPECT_EQ(a.format, "appended") << a.name << " is not in the appended section";
+  for (const auto& a : ascii.arrays) EXPECT_EQ(a.format, "ascii") << a.name;
+  const size_t n_points = std::stoul(binary.piece.at("NumberOfPoints"));
+  ASSERT_EQ(binary.array("Points").values.size(), 3 * n_points);
+  ASSERT_EQ(binary.array("displacement").values.size(), 3 * n_points);
+  double largest = 0;
+  for (double v : binary.array("displacement").values) largest = std::max(largest, std::abs(v));
+  EXPECT_GT(largest, 1.0) << "the tip deflects by about a third of the length 10";
+
+  ASSERT_EQ(binary.arrays.size(), ascii.arrays.size());
+  for (size_t k = 0; k < binary.arrays.size(); ++k) {
+    const auto &b = binary.arrays[k], &a = ascii.arrays[k];
+    SCOPED_TRACE(a.name);
+    EXPECT_EQ(b.name, a.name);
+    EXPECT_EQ(b.type, a.type);
+    EXPECT_EQ(b.n_components, a.n_components);
+    ASSERT_EQ(b.values.size(), a.values.size());
+    size_t differ = 0, first = 0;
+    for (size_t i = 0; i < a.values.size(); ++i)
+      if (!(std::abs(b.values[i] - a.values[i]) <= 1e-9 * std::abs(a.values[i])) && differ++ == 0) first = i;
+    EXPECT_EQ(differ, 0u) << "first at " << first << ": binary " << b.values[first] << ", ascii " << a.values[first];
+  }
+  // Measured: 49 224 bytes against 100 668 (0.49); doubles barely compress, the integers do.
+  EXPECT_LT(fs::file_size(binary_path), 0.75 * fs::file_size(ascii_path));
 }
 
 }  // namespace
