@@ -49,11 +49,11 @@
 // B_ext. The moving ends of the 2D segments are not differentiated: every integrand is
 // continuous across them, so they add no term to the exact integral, and none to the Gauss
 // sums when the integrands are polynomial (P1; checked against finite differences in
-// tests/unit/contact, 2D and 3D). At P2 they do: at a converged sliding state of ironing-2d
-// (friction 0.3, level 0, t = 1.06) directional differences disagree with the Jacobian by
-// 1% of its largest entry (22% in the x rows of two master vertices when only the master
-// moves), and agree to 1e-6 once the cuts are held fixed; frictional sliding then converges
-// only linearly (reports/README.md). In 3D the residual is only C0 where a crossing passes a master edge (B_ext's shape
+// tests/unit/contact, 2D and 3D). At P2 they add a term of the size of the Gauss rule's
+// error: computed (d xi / du of each cut exact, the pieces' sums differentiated along xi),
+// it changed the Jacobian by 6e-11 of its largest entry on a curved P2 master and left
+// the frictional ironing's Newton iterations unchanged, so it is left out. In 3D the
+// residual is only C0 where a crossing passes a master edge (B_ext's shape
 // functions have a kink there): Newton still converged quadratically on hertz-spheres-3d.
 #include <string>
 #include <vector>
