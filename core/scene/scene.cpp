@@ -12,6 +12,7 @@
 #include "contact/rigid_plane_contact.hpp"
 #include "contact/surface_contact.hpp"
 #include "mesh/gmsh_io.hpp"
+#include "mesh/structured_tube.hpp"
 #include "nonlinear/load_schedule.hpp"
 
 namespace stiction::scene {
@@ -45,10 +46,10 @@ struct Schemas {
                   std::string("mixed"), {"mixed", "displacement"}}}};
     mesh = {"mesh",
             {{"file", VT::String, "Gmsh .msh file (version 4), relative to the scene file", false},
-             {"generator", VT::String, "built-in geometry instead of a file", false, {}, {"box", "structured-box", "polygon", "sphere-octant"}},
+             {"generator", VT::String, "built-in geometry instead of a file", false, {}, {"box", "structured-box", "polygon", "sphere-octant", "tube"}},
              {"points", VT::FloatArray, "'polygon': corners x0, y0, x1, y1, ... counter-clockwise", false},
              {"sides", VT::StringArray, "'polygon': boundary name of each side (side i joins point i to i+1)", false},
-             {"thickness", VT::Float, "'polygon': extrusion along z for a 3D body (faces 'front', 'back')", false},
+             {"thickness", VT::Float, "'polygon': extrusion along z for a 3D body (faces 'front', 'back'); 'tube': wall thickness", false},
              {"point_sizes", VT::FloatArray, "'polygon': element size at each point (grading; each <= h)", false},
              {"arc_sides", VT::FloatArray, "'polygon': sides that are circular arcs (re-meshed per level)", false},
              {"arc_centers", VT::FloatArray, "'polygon': centre x, y of each arc side", false},
@@ -58,7 +59,12 @@ struct Schemas {
              {"contact_size", VT::Float, "'sphere-octant': element size near the pole (<= h)", false},
              {"contact_zone", VT::Float, "'sphere-octant': distance from the pole meshed at contact_size", false, 0.0},
              {"pole", VT::String, "'sphere-octant': 'bottom' (ball above the origin, flat face 'top') or 'top' (ball below it, flat face 'base')", false, std::string("bottom"), {"bottom", "top"}},
-             {"cells", VT::FloatArray, "cells per side for 'structured-box'", false}}};
+             {"cells", VT::FloatArray, "cells per side for 'structured-box'; 'tube': through the thickness, around, along", false},
+             {"inner_radius", VT::Float, "'tube': inner radius", false},
+             {"length", VT::Float, "'tube': length along the axis from center", false},
+             {"axis", VT::String, "'tube': axis direction", false, std::string("z"), {"x", "y", "z"}},
+             {"center", VT::FloatArray, "'tube': x, y, z of the axis point at the tube's start face", false},
+             {"angles", VT::FloatArray, "'tube': first and last angle around the axis in degrees (from y, z or x for axis x, y or z)", false}}};
     body = {"body",
             {{"name", VT::String, "body name (prefix of its boundary names: 'block/top')", true},
              {"material", VT::String, "name of a [[material]]", true},
@@ -209,6 +215,36 @@ std::unique_ptr<materials::Material> make_material(const toml::table& t, const s
   }
 }
 
+// The 'tube' generator's mesh at `level` (2^level times the level-0 cells: vertices stay on
+// the cylinders).
+mesh::Mesh make_tube_mesh(const toml::table& t, const std::string& file, const std::string& body, int level,
+                          bool* refined) {
+  const auto& S = schemas().mesh;
+  for (const char* key : {"inner_radius", "thickness", "length", "center", "angles", "cells"})
+    if (!t.contains(key)) throw Error(fmt::format("{}: body '{}': the 'tube' generator needs mesh.{}", file, body, key));
+  mesh::TubeSpec spec;
+  spec.inner_radius = get_float(t, S, "inner_radius");
+  spec.thickness = get_float(t, S, "thickness");
+  spec.length = get_float(t, S, "length");
+  spec.axis = get_string(t, S, "axis")[0] - 'x';
+  const auto center = get_floats(t, "center"), angles = get_floats(t, "angles"), cells = get_floats(t, "cells");
+  if (center.size() != 3 || angles.size() != 2 || cells.size() != 3)
+    throw Error(fmt::format("{}: body '{}': 'tube' needs 3 center coordinates, 2 angles and 3 cell counts", file, body));
+  for (int k = 0; k < 3; ++k) {
+    spec.center[k] = center[k];
+    if (cells[k] < 1 || cells[k] != std::floor(cells[k]))
+      throw Error(fmt::format("{}: body '{}': mesh.cells must be positive integers", file, body));
+    spec.cells[k] = static_cast<int>(cells[k]) << level;
+  }
+  spec.angles_degrees = {angles[0], angles[1]};
+  *refined = true;
+  try {
+    return mesh::structured_tube(spec);
+  } catch (const Error& e) {
+    throw Error(fmt::format("{}: body '{}': {}", file, body, e.what()));
+  }
+}
+
 // `refined` is set when the generator already produced the mesh at `level`.
 mesh::Mesh make_body_mesh(const toml::table& t, const std::string& file, const std::string& base_dir,
                           const std::string& body, int level, bool* refined) {
@@ -257,6 +293,7 @@ mesh::Mesh make_body_mesh(const toml::table& t, const std::string& file, const s
     *refined = true;
     return mesh::generate_sphere_octant(spec);
   }
+  if (gen == "tube") return make_tube_mesh(t, file, body, level, refined);
   const auto size = get_floats(t, "size");
   if (size.size() != 2 && size.size() != 3)
     throw Error(fmt::format("{}: body '{}': mesh.size needs 2 (2D) or 3 (3D) lengths", file, body));

@@ -10,6 +10,7 @@
 #include "fem/field_space.hpp"
 #include "mesh/gmsh_io.hpp"
 #include "mesh/mesh.hpp"
+#include "mesh/structured_tube.hpp"
 
 namespace stiction::mesh {
 namespace {
@@ -191,6 +192,52 @@ TEST(Generators, PolygonGradingSurvivesASphereOctant) {
   generate_sphere_octant(octant);
   EXPECT_EQ(generate_polygon(polygon).n_cells(), before);
   EXPECT_GT(before, 2 * 4 * 2 * 2) << "the point sizes grade the mesh well below h";
+}
+
+// A half tube along x (the crossed tubes' upper one): every cell positive, the volume that
+// of the polygonal ring whose vertices lie on both cylinders (n cells of angle d: n (Ro^2 -
+// Ri^2) sin(d) / 2 times the length, exact), every "inner" / "outer" vertex on its cylinder,
+// "start" and "end" at the axial ends, "side0" / "side1" in the plane z = 0.
+TEST(Generators, TubeVerticesLieOnTheCylinders) {
+  TubeSpec spec;
+  spec.inner_radius = 11.2, spec.thickness = 0.8, spec.length = 50;
+  spec.axis = 0, spec.center = {0, 24, 0}, spec.angles_degrees = {0, 180}, spec.cells = {2, 12, 4};
+  const Mesh m = structured_tube(spec);
+  for (int c = 0; c < m.n_cells(); ++c) ASSERT_GT(signed_measure(m, c), 0) << c;
+  const double d = M_PI / 12, Ro = 12.0, Ri = 11.2;
+  EXPECT_NEAR(total_measure(m), 12 * (Ro * Ro - Ri * Ri) * std::sin(d) / 2 * 50, 1e-10 * 50 * Ro * Ro);
+  std::map<std::string, int> checked;
+  for (int f = 0; f < m.n_facets(); ++f) {
+    std::string name;
+    for (const auto& [n, tag] : m.facet_tag_names)
+      if (tag == m.facet_tags[f]) name = n;
+    for (int k = 0; k < 3; ++k) {
+      const double* x = m.vertex(m.facet(f)[k]);
+      const double r = std::hypot(x[1] - 24, x[2]);
+      if (name == "inner") EXPECT_NEAR(r, Ri, 1e-12);
+      if (name == "outer") EXPECT_NEAR(r, Ro, 1e-12);
+      if (name == "start") EXPECT_NEAR(x[0], 0, 1e-12);
+      if (name == "end") EXPECT_NEAR(x[0], 50, 1e-12);
+      if (name == "side0" || name == "side1") EXPECT_NEAR(x[2], 0, 1e-12);
+    }
+    ++checked[name];
+  }
+  // Two triangles per boundary quadrilateral.
+  EXPECT_EQ(checked["inner"], 2 * 12 * 4);
+  EXPECT_EQ(checked["outer"], 2 * 12 * 4);
+  EXPECT_EQ(checked["start"], 2 * 2 * 12);
+  EXPECT_EQ(checked["side0"], 2 * 2 * 4);
+  EXPECT_EQ(checked["side1"], 2 * 2 * 4);
+  EXPECT_EQ(checked.size(), 6u);
+}
+
+TEST(Generators, TubeRejectsBadDimensions) {
+  TubeSpec spec;
+  spec.inner_radius = 1, spec.thickness = 0.1, spec.length = 2;
+  spec.angles_degrees = {0, 360};
+  EXPECT_THROW(structured_tube(spec), Error);
+  spec.angles_degrees = {0, 90}, spec.thickness = 0;
+  EXPECT_THROW(structured_tube(spec), Error);
 }
 
 TEST(GmshRead, MissingFileIsAnError) {

@@ -1,0 +1,27 @@
+#pragma once
+// A structured tetrahedral mesh of a tube sector: the ring between two radii, between two
+// angles, along a straight axis. Made as structured_box's Kuhn-split hexahedra in
+// (radius, angle, axial) coordinates, mapped so that every vertex lies on the true cylinders
+// (only the straight edges between vertices cut the curvature). A refined level is a new
+// mesh with 2^level times the cells, so refined vertices stay on the cylinders too.
+#include <array>
+
+#include "mesh/mesh.hpp"
+
+namespace stiction::mesh {
+
+struct TubeSpec {
+  double inner_radius = 0, thickness = 0, length = 0;
+  int axis = 2;                                  // 0 x, 1 y, 2 z
+  std::array<double, 3> center{0, 0, 0};         // on the axis, at the start face
+  std::array<double, 2> angles_degrees{0, 360};  // around the axis, from a towards b (below)
+  std::array<int, 3> cells{2, 24, 16};           // through the thickness, around, along
+};
+
+// Angles are measured in the plane normal to the axis from the next axis in cyclic order
+// towards the one after it: axis x: from y towards z; y: from z towards x; z: from x
+// towards y. Facet names: "inner", "outer" (the cylinders), "side0", "side1" (the faces at
+// the two angles), "start" (at center), "end" (length along the axis). Cell tag "body".
+Mesh structured_tube(const TubeSpec& spec);
+
+}  // namespace stiction::mesh
