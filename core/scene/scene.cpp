@@ -23,7 +23,7 @@ using VT = ValueType;
 
 // Every key of a scene file, with its type, default and a one-line doc.
 struct Schemas {
-  TableSpec scene_meta, material, mesh, body, dirichlet, traction, body_force, contact, phase, load, newton, output,
+  TableSpec scene_meta, material, size_field, mesh, body, dirichlet, traction, body_force, contact, phase, load, newton, output,
       root;
   Schemas() {
     scene_meta = {"scene",
@@ -44,13 +44,18 @@ struct Schemas {
                  {"kappa", VT::Float, "Mooney-Rivlin bulk modulus", false},
                  {"formulation", VT::String, "Mooney-Rivlin unknowns: mixed u-p (paper) or displacement only", false,
                   std::string("mixed"), {"mixed", "displacement"}}}};
+    size_field = {"size_field",
+                  {{"boundary", VT::String, "a side name of this body", true},
+                   {"size", VT::Float, "element size on that boundary (<= h)", true},
+                   {"distance", VT::Float, "distance from it at which the size has grown to h", true}}};
     mesh = {"mesh",
-            {{"file", VT::String, "Gmsh .msh file (version 4), relative to the scene file", false},
+            {{"file", VT::String, "Gmsh .msh file (version 4), or a .geo script meshed through the Gmsh library (a level re-meshes it at sizes / 2^level)", false},
              {"generator", VT::String, "built-in geometry instead of a file", false, {}, {"box", "structured-box", "polygon", "sphere-octant", "tube"}},
              {"points", VT::FloatArray, "'polygon': corners x0, y0, x1, y1, ... counter-clockwise", false},
              {"sides", VT::StringArray, "'polygon': boundary name of each side (side i joins point i to i+1)", false},
              {"thickness", VT::Float, "'polygon': extrusion along z for a 3D body (faces 'front', 'back'); 'tube': wall thickness", false},
              {"point_sizes", VT::FloatArray, "'polygon': element size at each point (grading; each <= h)", false},
+             {"size_fields", VT::TableArray, "'polygon': sizes growing with the distance from named sides [{boundary, size, distance}, ...]", false, {}, {}, &size_field},
              {"arc_sides", VT::FloatArray, "'polygon': sides that are circular arcs (re-meshed per level)", false},
              {"arc_centers", VT::FloatArray, "'polygon': centre x, y of each arc side", false},
              {"size", VT::FloatArray, "box side lengths [lx, ly] (2D) or [lx, ly, lz] (3D)", false},
@@ -255,6 +260,10 @@ mesh::Mesh make_body_mesh(const toml::table& t, const std::string& file, const s
   if (has_file) {
     std::filesystem::path p = get_string(t, S, "file");
     if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
+    if (p.extension() == ".geo") {
+      *refined = true;  // re-meshed per level: curved boundaries stay on the geometry
+      return mesh::mesh_geo(p.string(), std::ldexp(1.0, -level));
+    }
     return mesh::read_msh(p.string());
   }
   const std::string gen = get_string(t, S, "generator");
@@ -266,6 +275,10 @@ mesh::Mesh make_body_mesh(const toml::table& t, const std::string& file, const s
     spec.h = get_float(t, S, "h");
     spec.thickness = t.contains("thickness") ? get_float(t, S, "thickness") : 0.0;
     spec.point_sizes = get_floats(t, "point_sizes");
+    for (const auto* f : tables(t, "size_fields"))
+      spec.size_fields.push_back({get_string(*f, schemas().size_field, "boundary"),
+                                  get_float(*f, schemas().size_field, "size"),
+                                  get_float(*f, schemas().size_field, "distance")});
     const auto arc_sides = get_floats(t, "arc_sides"), centres = get_floats(t, "arc_centers");
     if (centres.size() != 2 * arc_sides.size())
       throw Error(fmt::format("{}: body '{}': arc_centers needs x, y for each of the {} arc sides", file, body,

@@ -194,6 +194,94 @@ TEST(Generators, PolygonGradingSurvivesASphereOctant) {
   EXPECT_GT(before, 2 * 4 * 2 * 2) << "the point sizes grade the mesh well below h";
 }
 
+// Mean length of the edges of the facets named `name`.
+double mean_facet_edge(const Mesh& m, const std::string& name) {
+  const int tag = m.facet_tag_names.at(name), d = m.dim;
+  double sum = 0;
+  int n = 0;
+  for (int f = 0; f < m.n_facets(); ++f) {
+    if (m.facet_tags[f] != tag) continue;
+    for (int k = 0; k < d; ++k) {
+      const double* a = m.vertex(m.facet(f)[k]);
+      const double* b = m.vertex(m.facet(f)[(k + 1) % d]);
+      double e = 0;
+      for (int c = 0; c < d; ++c) e += (a[c] - b[c]) * (a[c] - b[c]);
+      sum += std::sqrt(e), ++n;
+      if (d == 2) break;  // a segment has one edge
+    }
+  }
+  return sum / n;
+}
+
+// A size field on one side of a 4 x 3 rectangle (h = 0.5): edges of about 0.05 there, of h
+// on the opposite side (3 away, beyond the field's distance 2), in 2D and extruded to 3D.
+// Without the field every side is meshed at h.
+TEST(Generators, PolygonSizeFieldGradesFromANamedSide) {
+  for (double thickness : {0.0, 0.5}) {
+    SCOPED_TRACE(thickness);
+    PolygonSpec spec;
+    spec.xy = {0.0, 0.0, 4.0, 0.0, 4.0, 3.0, 0.0, 3.0};
+    spec.names = {"base", "right", "top", "left"};
+    spec.h = 0.5;
+    spec.thickness = thickness;
+    const double uniform_top = mean_facet_edge(generate_polygon(spec), "top");
+    spec.size_fields = {{"top", thickness > 0 ? 0.1 : 0.05, 2.0}};
+    const Mesh m = generate_polygon(spec);
+    EXPECT_NO_THROW(check_validity(m, "graded polygon"));
+    const double top = mean_facet_edge(m, "top"), base = mean_facet_edge(m, "base");
+    EXPECT_GT(uniform_top, 0.35);
+    EXPECT_LT(top, 1.5 * spec.size_fields[0].size);
+    EXPECT_GT(top, 0.6 * spec.size_fields[0].size);
+    EXPECT_GT(base, 0.35);
+  }
+}
+
+TEST(Generators, SizeFieldOnAnUnknownSideNamesTheSides) {
+  PolygonSpec spec;
+  spec.xy = {0.0, 0.0, 1.0, 0.0, 1.0, 1.0};
+  spec.names = {"a", "b", "c"};
+  spec.h = 0.5;
+  spec.size_fields = {{"d", 0.1, 0.5}};
+  try {
+    generate_polygon(spec);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no boundary named 'd'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("a, b, c"), std::string::npos) << e.what();
+  }
+  spec.size_fields = {{"a", 0.6, 0.5}};  // above h
+  EXPECT_THROW(generate_polygon(spec), Error);
+}
+
+// A .geo script (OpenCASCADE disk of radius 1, its rim a named curve) meshed through the
+// Gmsh library: the rim's vertices lie on the circle at every size factor, the area
+// approaches pi from below as the mesh is refined, and halving the sizes gives about four
+// times the cells.
+TEST(GeoScript, MeshedAtEachLevelWithVerticesOnTheCurvedBoundary) {
+  const std::filesystem::path path = std::filesystem::path(::testing::TempDir()) / "disk.geo";
+  {
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fputs("SetFactory(\"OpenCASCADE\");\nDisk(1) = {0, 0, 0, 1};\nPhysical Surface(\"body\") = {1};\n"
+               "Physical Curve(\"rim\") = {1};\nMesh.MeshSizeMax = 0.2;\n", f);
+    std::fclose(f);
+  }
+  const Mesh coarse = mesh_geo(path.string(), 1.0), fine = mesh_geo(path.string(), 0.5);
+  for (const Mesh* m : {&coarse, &fine}) {
+    EXPECT_NO_THROW(check_validity(*m, "disk"));
+    ASSERT_TRUE(m->facet_tag_names.count("rim"));
+    for (int f = 0; f < m->n_facets(); ++f)
+      for (int k = 0; k < 2; ++k) EXPECT_NEAR(std::hypot(m->vertex(m->facet(f)[k])[0], m->vertex(m->facet(f)[k])[1]), 1.0, 1e-9);
+  }
+  const double a0 = total_measure(coarse), a1 = total_measure(fine);
+  EXPECT_LT(a0, a1);
+  EXPECT_LT(a1, M_PI);
+  EXPECT_GT(a0, 0.98 * M_PI);
+  EXPECT_GT(fine.n_cells(), 3 * coarse.n_cells());
+  EXPECT_LT(fine.n_cells(), 5 * coarse.n_cells());
+  EXPECT_THROW(mesh_geo("/nonexistent/shape.geo", 1.0), Error);
+}
+
 // A half tube along x (the crossed tubes' upper one): every cell positive, the volume that
 // of the polygonal ring whose vertices lie on both cylinders (n cells of angle d: n (Ro^2 -
 // Ri^2) sin(d) / 2 times the length, exact), every "inner" / "outer" vertex on its cylinder,

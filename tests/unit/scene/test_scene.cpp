@@ -1,6 +1,9 @@
 // Scene schema: defaults, validation messages, and that only named objects are built.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
+
 #include "common/error.hpp"
 #include "scene/scene.hpp"
 #include "builtin_scenes.hpp"
@@ -53,6 +56,34 @@ TEST(Scene, DefaultsComeFromTheSchema) {
 TEST(Scene, LevelRefines) {
   auto s = build_scene(kMinimal, "test.toml", ".", 2);
   EXPECT_EQ(s->mesh.n_cells(), 8 * 16);
+}
+
+// A body meshed from a .geo script (a disk, its rim named "rim"): each level is a new Gmsh
+// mesh at sizes / 2^level, so the refined rim stays on the circle (uniform refinement would
+// leave its new vertices on the coarse chords, inside it).
+TEST(Scene, GeoScriptLevelsRemeshTheGeometry) {
+  const std::string dir = ::testing::TempDir();
+  {
+    std::FILE* f = std::fopen((dir + "/disk.geo").c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fputs("SetFactory(\"OpenCASCADE\");\nDisk(1) = {0, 0, 0, 1};\nPhysical Surface(\"body\") = {1};\n"
+               "Physical Curve(\"rim\") = {1};\nMesh.MeshSizeMax = 0.25;\n", f);
+    std::fclose(f);
+  }
+  std::string text = test::replaced(kMinimal, R"(mesh = { generator = "structured-box", size = [4.0, 1.0], cells = [4, 1] })",
+                                    R"(mesh = { file = "disk.geo" })");
+  text = test::replaced(text, R"(boundary = "xmin")", R"(boundary = "rim")");
+  const auto coarse = build_scene(text, "disk.toml", dir, 0), fine = build_scene(text, "disk.toml", dir, 1);
+  EXPECT_GT(fine->mesh.n_cells(), 3 * coarse->mesh.n_cells());
+  const int rim = fine->mesh.facet_tag_names.at("bar/rim");
+  int on_rim = 0;
+  for (int f = 0; f < fine->mesh.n_facets(); ++f) {
+    if (fine->mesh.facet_tags[f] != rim) continue;
+    const double* x = fine->mesh.vertex(fine->mesh.facet(f)[0]);
+    EXPECT_NEAR(std::hypot(x[0], x[1]), 1.0, 1e-9);
+    ++on_rim;
+  }
+  EXPECT_GT(on_rim, 40);
 }
 
 TEST(Scene, UnknownKeyNamesFileKeyAndAccepted) {
