@@ -8,9 +8,23 @@
 
 namespace stiction::contact {
 
+double ContactSettings::friction_at(double t) const {
+  if (friction_schedule.empty()) return friction;
+  double mu = friction_schedule.front().second;
+  for (const auto& [t_k, mu_k] : friction_schedule)
+    if (t_k < t) mu = mu_k;
+  return mu;
+}
+
 ContactPair::ContactPair(std::string name, const fem::FieldSpace& space, int slave_tag, ContactSettings settings)
     : dim_(space.dim()), slave_tag_(slave_tag), slave_(make_slave_surface(space, slave_tag, name)), settings_(settings), name_(std::move(name)) {
   if (settings_.friction < 0) throw Error(fmt::format("contact '{}': friction must be >= 0", name_));
+  for (size_t k = 0; k < settings_.friction_schedule.size(); ++k) {
+    const auto [t_k, mu_k] = settings_.friction_schedule[k];
+    if (mu_k < 0) throw Error(fmt::format("contact '{}': friction must be >= 0 (row {} of its table)", name_, k + 1));
+    if (k > 0 && !(t_k > settings_.friction_schedule[k - 1].first))
+      throw Error(fmt::format("contact '{}': the friction table's times must increase (row {})", name_, k + 1));
+  }
   if (!(settings_.modulus > 0)) throw Error(fmt::format("contact '{}': modulus must be > 0", name_), ErrorKind::Internal);
   tolerances_.force = settings_.force_tolerance * settings_.modulus;
   state_.assign(slave_.n_nodes(), NodeState::Inactive);
@@ -67,7 +81,7 @@ void ContactPair::evaluate(double t, const std::vector<double>& u, const double*
     // A node that lost its projection cannot press: it takes the inactive row until the
     // state machine releases it.
     const NodeState s = k.admissible ? state_[i] : NodeState::Inactive;
-    NodeRow row = node_row(s, k.n, k.G, k.S, lam, settings_.friction, r_t_[i]);
+    NodeRow row = node_row(s, k.n, k.G, k.S, lam, settings_.friction_at(t), r_t_[i]);
     if (settings_.mass_weighted_rows) row = weighted_by_mass(row, s, k.n, slave_.lumped_mass[i]);
     for (int c = 0; c < d; ++c) r_c[i * d + c] = row.c[c];
     if (!jacobian) continue;
@@ -104,7 +118,7 @@ int ContactPair::update_states(double t, const std::vector<double>& u, const dou
     for (int c = 0; c < d; ++c) lam[c] = lambda[i * d + c], dlam[c] = dlambda[i * d + c];
     StateTolerances tol = tolerances_;
     tol.gap = std::max(settings_.gap_tolerance * slave_.diameter, entry) * slave_.lumped_mass[i];
-    NodeState next = next_state(state_[i], node_quantities(k.n, k.G, k.S, lam), settings_.friction, tol);
+    NodeState next = next_state(state_[i], node_quantities(k.n, k.G, k.S, lam), settings_.friction_at(t), tol);
     if (!k.admissible) next = NodeState::Inactive;
     // Adaptive r_t (Sec. 4.4): consecutive tangential corrections pointing the same way mean
     // r_t is too small (grow it), opposite ways mean it overshoots (shrink it).

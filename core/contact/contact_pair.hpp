@@ -19,6 +19,12 @@ namespace stiction::contact {
 
 struct ContactSettings {
   double friction = 0;             // Coulomb coefficient mu
+  // Friction that changes with the load phase: rows (t_k, mu_k) with increasing t_k; an
+  // increment ending at pseudo-time t uses mu_k of the last row with t_k < t (the first
+  // row's before it), so a row at the end of a phase takes effect in the next. Empty: mu
+  // is `friction` throughout.
+  std::vector<std::pair<double, double>> friction_schedule;
+  double friction_at(double t) const;
   double modulus = 1;              // stiffness scale of the slave body (Young's modulus)
   double gap_tolerance = 1e-9;     // relative to the slave surface's diameter
   double force_tolerance = 1e-9;   // relative to the modulus
@@ -101,6 +107,7 @@ public:
   std::vector<double> mean_normal_gaps(double t, const std::vector<double>& u) const;
 
   const SlaveSurface& slave() const { return slave_; }
+  const ContactSettings& settings() const { return settings_; }
   NodeState state(int node) const { return state_[node]; }
   void set_state(int node, NodeState s) { state_[node] = s; }  // for tests
 

@@ -107,6 +107,7 @@ struct Schemas {
                 {"schedule", VT::FloatArray, "factor on motion at each load step (default: the step's pseudo-time / the last's)", false},
                 {"motion_table", VT::FloatRows, "'plane': rows [t, translation per dimension], piecewise-linear in pseudo-time, instead of motion and schedule", false},
                 {"friction", VT::Float, "Coulomb coefficient mu (0: frictionless)", false, 0.0},
+                {"friction_table", VT::FloatRows, "instead of friction: rows [t, mu]; an increment ending at t uses the mu of the last row before t (the first row's until then)", false},
                 {"gap_tolerance", VT::Float, "state machine: penetration tolerance, relative to the slave size",
                  false, 1e-9},
                 {"force_tolerance", VT::Float, "state machine: tension tolerance on lambda_n, relative to E", false,
@@ -466,6 +467,16 @@ std::unique_ptr<nonlinear::MultiplierConstraint> make_contact(const Scene& s, co
       throw Error(fmt::format("{}: {}: key '{}' does not apply to master '{}'", file, what, key, master));
   contact::ContactSettings cs;
   cs.friction = get_float(t, S, "friction");
+  if (t.contains("friction_table")) {
+    if (t.contains("friction"))
+      throw Error(fmt::format("{}: {}: give one of 'friction' and 'friction_table'", file, what));
+    for (const auto& row : get_float_rows(t, "friction_table")) {
+      if (row.size() != 2)
+        throw Error(fmt::format("{}: {}: every 'friction_table' row needs 2 numbers (t and mu)", file, what));
+      cs.friction_schedule.emplace_back(row[0], row[1]);
+    }
+    if (cs.friction_schedule.empty()) throw Error(fmt::format("{}: {}: 'friction_table' is empty", file, what));
+  }
   cs.gap_tolerance = get_float(t, S, "gap_tolerance");
   cs.force_tolerance = get_float(t, S, "force_tolerance");
   cs.tangential_penalty = get_float(t, S, "tangential_penalty");

@@ -15,6 +15,8 @@
 #include "registry.hpp"
 #include "scene/scene.hpp"
 #include "support/solve_scene.hpp"
+#include "builtin_scenes.hpp"
+#include "common/error.hpp"
 
 namespace stiction::test {
 namespace {
@@ -42,6 +44,34 @@ TEST(Friction, SticksBelowMuNThenSlidesWithMuN) {
   for (const auto& step : s.steps) EXPECT_LT(step.iterations.size(), 10u) << "load step " << step.step;
 }
 
+// Friction that changes with the load phase (friction_table): sliding-block-2d with mu = 0
+// until t = 0.5 and 0.3 after it. Step 1 (t = 1/3) presses the block and pulls its top
+// sideways: frictionless, the ground exerts no tangential force (with mu = 0.3 throughout
+// the nodes would stick and it would). Step 3 pulls it far: it slides with F_x = mu F_y.
+TEST(Friction, FrictionTableChangesMuBetweenPhases) {
+  std::string text = harness::builtin_scenes().at("sliding-block-2d");
+  text = replaced(text, "friction = 0.3", "friction_table = [[0.0, 0.0], [0.5, 0.3]]");
+  text = replaced(text, "schedule = [0.0, 0.004, 1.0]", "schedule = [0.2, 0.2, 1.0]");
+  auto sc = scene::build_scene(text, "sliding-block-friction-table", ".");
+  auto solver = solvers::create_solver("lu-mumps", PETSC_COMM_WORLD);
+  nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, sc->problem, sc->newton, *solver);
+  const auto steps = newton.run();
+  ASSERT_EQ(steps.size(), 3u);
+  for (const auto& step : steps) ASSERT_TRUE(step.converged()) << step.step << ": " << step.detail;
+  const auto& frictionless = steps[0].contact.at(0);
+  EXPECT_GT(frictionless.force[1], 0);
+  EXPECT_LT(std::abs(frictionless.force[0]), 1e-8 * frictionless.force[1]);
+  const auto& slide = steps[2].contact.at(0);
+  EXPECT_EQ(slide.stick, 0);
+  EXPECT_NEAR(std::abs(slide.force[0]) / (0.3 * slide.force[1]), 1.0, 1e-6);
+
+  const contact::ContactSettings& settings = dynamic_cast<const contact::ContactPair&>(*sc->contacts.at(0)).settings();
+  EXPECT_EQ(settings.friction_at(0.5), 0.0) << "a row takes effect after its time";
+  EXPECT_EQ(settings.friction_at(0.5 + 1e-12), 0.3);
+  EXPECT_EQ(settings.friction_at(-1.0), 0.0);
+  EXPECT_THROW(scene::build_scene(replaced(text, "friction_table", "friction = 0.1\nfriction_table"), "both", "."),
+               Error);
+}
 
 // Cattaneo-Mindlin in plane strain: two identical elastic cylinders (R = 1, so R* = 1/2 and
 // E* = E / (2 (1 - nu^2)); identical bodies, so normal and tangential tractions do not
