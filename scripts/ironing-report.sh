@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The shallow-ironing report (reports/ironing-2d/): ironing-2d and ironing-2d-frictionless
 # through `stiction bench` (each run in its own process, rows kept as they finish), then,
-# with gnuplot (installed here when missing: only this report needs it), the force on the
+# with gnuplot (installed when missing: scripts/ensure-gnuplot.sh), the force on the
 # indenter against pseudo-time and the Newton iterations per load increment, one SVG per
 # scene. The force on the indenter is the multiplier's integral (F3, contact_ironing_force_*:
 # the force the slab exerts on the indenter); the published band at t = 1 (per unit
@@ -12,11 +12,7 @@ set -euo pipefail
 build=${1:-build}
 out=${IRONING_OUT:-reports/ironing-2d}
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
-if ! command -v gnuplot > /dev/null; then
-  sudo=""
-  [ "$(id -u)" -ne 0 ] && sudo="sudo"
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends gnuplot-nox > /dev/null
-fi
+source "$(dirname "$0")/ensure-gnuplot.sh"
 mkdir -p "$out"
 "$build/stiction" bench --scenes ironing-2d,ironing-2d-frictionless --solvers "${IRONING_SOLVERS:-lu-mumps,schur-amg}" \
   --levels "${IRONING_LEVELS:-0}" --time-limit "${IRONING_TIME_LIMIT:-3600}" --out "$out" --resume
