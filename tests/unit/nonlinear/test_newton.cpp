@@ -3,6 +3,7 @@
 // Newton's quadratic convergence and its named failure reasons.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -303,6 +304,56 @@ TEST(Newton, CutBackRetriesAFailedStepAndReachesTheSameState) {
     size = std::max(size, std::abs(reference.displacement()[k]));
   }
   EXPECT_LT(diff, 1e-8 * size);
+}
+
+// lu-mumps, except that the solves numbered in `fail_at` (1-based, over the whole run)
+// report a breakdown: a linear failure at a chosen point of the Newton path.
+class FailingSolver : public LinearSolver {
+public:
+  explicit FailingSolver(std::vector<int> fail_at)
+      : inner_(solvers::create_solver("lu-mumps", PETSC_COMM_WORLD)), fail_at_(std::move(fail_at)) {}
+  std::string name() const override { return "failing-lu"; }
+  void setup(const NewtonSystem& system) override { inner_->setup(system); }
+  LinearSolveStats solve(const NewtonSystem& system, Vec x) override {
+    LinearSolveStats s = inner_->solve(system, x);
+    if (std::find(fail_at_.begin(), fail_at_.end(), ++solves_) != fail_at_.end()) {
+      s.converged = false;
+      s.reason = "DIVERGED_BREAKDOWN";
+    }
+    return s;
+  }
+  std::string describe() const override { return inner_->describe(); }
+  void apply_preconditioner(Vec in, Vec out) const override { inner_->apply_preconditioner(in, out); }
+
+private:
+  std::unique_ptr<LinearSolver> inner_;
+  std::vector<int> fail_at_;
+  int solves_ = 0;
+};
+
+// A linear solve that fails after the first Newton iteration of an increment belongs to
+// that increment's Newton path: the increment is retried over halves and the run reaches
+// the end. One that fails on the increment's first system (the converged state's, the same
+// for any increment) stops the run at once.
+TEST(Newton, LinearFailureLaterInAnIncrementIsRetried) {
+  Cantilever c;
+  {
+    FailingSolver solver({2});  // step 1, second Newton iteration
+    QuasiStaticSolver newton(PETSC_COMM_WORLD, c.p, NewtonSettings{}, solver);
+    const auto parts = newton.run();
+    ASSERT_TRUE(parts.back().converged()) << parts.back().detail;
+    EXPECT_EQ(parts.front().reason, NewtonReason::DivergedLinearSolver);
+    EXPECT_TRUE(parts.front().retried);
+    EXPECT_DOUBLE_EQ(parts.back().time, 2.0);
+  }
+  {
+    FailingSolver solver({1});  // step 1, first Newton iteration
+    QuasiStaticSolver newton(PETSC_COMM_WORLD, c.p, NewtonSettings{}, solver);
+    const auto parts = newton.run();
+    ASSERT_EQ(parts.size(), 1u);
+    EXPECT_EQ(parts.front().reason, NewtonReason::DivergedLinearSolver);
+    EXPECT_FALSE(parts.front().retried);
+  }
 }
 
 TEST(Newton, SystemCarriesFieldsAndNearNullSpace) {
