@@ -6,154 +6,19 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <functional>
 #include <map>
-#include <unordered_map>
 
 #include "common/error.hpp"
+#include "mesh/gmsh_session.hpp"
 
 namespace stiction::mesh {
 
 namespace {
 
-// Gmsh keeps one global model: initialise it once, start each use from an empty model.
-void gmsh_begin() {
-  static bool initialised = false;
-  if (!initialised) {
-    gmsh::initialize(0, nullptr, false);
-    initialised = true;
-  }
-  gmsh::option::setNumber("General.Terminal", 0);
-  gmsh::option::setNumber("General.Verbosity", 1);
-  gmsh::option::setNumber("General.NumThreads", 1);  // deterministic meshes
-  // Options outlive the model: reset the ones a generator changes to Gmsh's defaults, or a
-  // sphere octant (sizes from its field only) left every later polygon in the process
-  // meshed at uniform h, its point sizes ignored.
-  gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 1);
-  gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 1);
-  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
-  gmsh::option::setNumber("Mesh.MeshSizeFactor", 1);
-  gmsh::clear();
-}
-
-std::string gmsh_last_error() {
-  std::string e;
-  try {
-    gmsh::logger::getLastError(e);
-  } catch (...) {
-  }
-  return e;
-}
-
-// Runs a Gmsh call sequence and turns whatever Gmsh throws into a stiction::Error.
-template <class F>
-auto with_gmsh(const std::string& context, F&& f) {
-  try {
-    return f();
-  } catch (const Error&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw Error(fmt::format("{}: {}", context, e.what()));
-  } catch (...) {
-    const std::string last = gmsh_last_error();
-    throw Error(fmt::format("{}: {}", context, last.empty() ? "Gmsh failed" : last));
-  }
-}
-
-// Builds a Mesh from Gmsh's current model. Cells are the elements of top dimension in
-// physical groups (all of them when there is none); facets those of dimension - 1 in
-// physical groups. Only vertices used by cells are kept.
-Mesh extract_current_model(const std::string& what) {
-  Mesh m;
-  m.dim = gmsh::model::getDimension();
-  if (m.dim != 2 && m.dim != 3)
-    throw Error(fmt::format("{}: mesh of dimension {} (2 or 3 expected)", what, m.dim));
-  const int d = m.dim;
-
-  std::vector<std::size_t> node_tags;
-  std::vector<double> xyz, param;
-  gmsh::model::mesh::getNodes(node_tags, xyz, param, -1, -1, false, false);
-  std::unordered_map<std::size_t, int> local;  // gmsh node tag -> vertex index
-  std::unordered_map<std::size_t, size_t> pos;  // gmsh node tag -> position in xyz
-  for (size_t i = 0; i < node_tags.size(); ++i) pos[node_tags[i]] = i;
-  auto vertex_of = [&](std::size_t tag) {
-    auto it = local.find(tag);
-    if (it != local.end()) return it->second;
-    auto p = pos.find(tag);
-    if (p == pos.end()) throw Error(fmt::format("{}: element refers to unknown node {}", what, tag));
-    const int id = m.n_vertices();
-    for (int k = 0; k < d; ++k) m.coords.push_back(xyz[3 * p->second + k]);
-    local[tag] = id;
-    return id;
-  };
-
-  // Calls f(corner node tags) for each simplex of dimension `dim` in entity `entity`.
-  auto for_simplices = [&](int dim, int entity, const std::function<void(const std::size_t*)>& f) {
-    std::vector<int> types;
-    std::vector<std::vector<std::size_t>> tags, nodes;
-    gmsh::model::mesh::getElements(types, tags, nodes, dim, entity);
-    for (size_t t = 0; t < types.size(); ++t) {
-      std::string name;
-      int edim, order, n_nodes, n_primary;
-      std::vector<double> local_coords;
-      gmsh::model::mesh::getElementProperties(types[t], name, edim, order, n_nodes, local_coords, n_primary);
-      if (n_primary != dim + 1)
-        throw Error(fmt::format("{}: element type '{}' is not a simplex (only triangles and "
-                                "tetrahedra are supported)", what, name));
-      for (size_t e = 0; e < tags[t].size(); ++e) f(&nodes[t][e * n_nodes]);
-    }
-  };
-
-  gmsh::vectorpair groups;
-  gmsh::model::getPhysicalGroups(groups, d);
-  auto add_cells = [&](int entity, int tag) {
-    for_simplices(d, entity, [&](const std::size_t* n) {
-      for (int k = 0; k <= d; ++k) m.cells.push_back(vertex_of(n[k]));
-      m.cell_tags.push_back(tag);
-    });
-  };
-  if (groups.empty()) {
-    add_cells(-1, 1);
-    m.cell_tag_names["body"] = 1;
-  }
-  for (auto [gd, gtag] : groups) {
-    std::vector<int> entities;
-    gmsh::model::getEntitiesForPhysicalGroup(gd, gtag, entities);
-    for (int e : entities) add_cells(e, gtag);
-    std::string name;
-    gmsh::model::getPhysicalName(gd, gtag, name);
-    m.cell_tag_names[name.empty() ? std::to_string(gtag) : name] = gtag;
-  }
-  if (m.n_cells() == 0) throw Error(fmt::format("{}: no {}D cells found", what, d));
-
-  gmsh::vectorpair fgroups;
-  gmsh::model::getPhysicalGroups(fgroups, d - 1);
-  for (auto [gd, gtag] : fgroups) {
-    std::vector<int> entities;
-    gmsh::model::getEntitiesForPhysicalGroup(gd, gtag, entities);
-    for (int e : entities)
-      for_simplices(d - 1, e, [&](const std::size_t* n) {
-        for (int k = 0; k < d; ++k) {
-          auto it = local.find(n[k]);
-          if (it == local.end())
-            throw Error(fmt::format("{}: boundary group {} has a node on no cell", what, gtag));
-          m.facets.push_back(it->second);
-        }
-        m.facet_tags.push_back(gtag);
-      });
-    std::string name;
-    gmsh::model::getPhysicalName(gd, gtag, name);
-    m.facet_tag_names[name.empty() ? std::to_string(gtag) : name] = gtag;
-  }
-  return m;
-}
-
-void set_size_and_generate(int dim, double h, double h_min = 0) {
-  gmsh::option::setNumber("Mesh.MeshSizeMin", h_min > 0 ? h_min : h);
-  gmsh::option::setNumber("Mesh.MeshSizeMax", h);
-  gmsh::option::setNumber("Mesh.Algorithm3D", 1);  // Delaunay: fast and deterministic
-  gmsh::model::mesh::generate(dim);
-}
+using detail::extract_current_model;
+using detail::gmsh_begin;
+using detail::set_size_and_generate;
+using detail::with_gmsh;
 
 // Makes each field's size the background mesh size (the minimum of them where several
 // apply), on the entities of the boundary group it names in the current model.
