@@ -12,6 +12,7 @@
 #include "contact/rigid_plane_contact.hpp"
 #include "contact/surface_contact.hpp"
 #include "mesh/gmsh_io.hpp"
+#include "mesh/grooved_block.hpp"
 #include "mesh/structured_tube.hpp"
 #include "nonlinear/load_schedule.hpp"
 
@@ -50,7 +51,7 @@ struct Schemas {
                    {"distance", VT::Float, "distance from it at which the size has grown to h", true}}};
     mesh = {"mesh",
             {{"file", VT::String, "Gmsh .msh file (version 4), or a .geo script meshed through the Gmsh library (a level re-meshes it at sizes / 2^level)", false},
-             {"generator", VT::String, "built-in geometry instead of a file", false, {}, {"box", "structured-box", "polygon", "sphere-octant", "tube"}},
+             {"generator", VT::String, "built-in geometry instead of a file", false, {}, {"box", "structured-box", "polygon", "sphere-octant", "tube", "grooved-block"}},
              {"points", VT::FloatArray, "'polygon': corners x0, y0, x1, y1, ... counter-clockwise", false},
              {"sides", VT::StringArray, "'polygon': boundary name of each side (side i joins point i to i+1)", false},
              {"thickness", VT::Float, "'polygon': extrusion along z for a 3D body (faces 'front', 'back'); 'tube': wall thickness", false},
@@ -58,10 +59,14 @@ struct Schemas {
              {"size_fields", VT::TableArray, "'polygon': sizes growing with the distance from named sides [{boundary, size, distance}, ...]", false, {}, {}, &size_field},
              {"arc_sides", VT::FloatArray, "'polygon': sides that are circular arcs (re-meshed per level)", false},
              {"arc_centers", VT::FloatArray, "'polygon': centre x, y of each arc side", false},
-             {"size", VT::FloatArray, "box side lengths [lx, ly] (2D) or [lx, ly, lz] (3D)", false},
-             {"h", VT::Float, "target element size for the 'box', 'polygon' and 'sphere-octant' generators (Gmsh)", false},
+             {"size", VT::FloatArray, fmt::format("box side lengths [lx, ly] (2D) or [lx, ly, lz] (3D); 'grooved-block': [lx, ly, lz] (default the "
+                                                "paper's [{}, {}, {}])", mesh::GroovedBlockSpec{}.size[0], mesh::GroovedBlockSpec{}.size[1],
+                                                mesh::GroovedBlockSpec{}.size[2]), false},
+             {"h", VT::Float, fmt::format("target element size for the 'box', 'polygon' and 'sphere-octant' generators (Gmsh); 'grooved-block': "
+                                          "size at the top (default {})", mesh::GroovedBlockSpec{}.h), false},
              {"radius", VT::Float, "'sphere-octant': radius R (pole at the origin, ball above or below it: see pole)", false},
-             {"contact_size", VT::Float, "'sphere-octant': element size near the pole (<= h)", false},
+             {"contact_size", VT::Float, fmt::format("'sphere-octant': element size near the pole (<= h); 'grooved-block': size on the strip bottoms, "
+                                                     "growing linearly in z to h at the top (default {})", mesh::GroovedBlockSpec{}.contact_size), false},
              {"contact_zone", VT::Float, "'sphere-octant': distance from the pole meshed at contact_size", false, 0.0},
              {"pole", VT::String, "'sphere-octant': 'bottom' (ball above the origin, flat face 'top') or 'top' (ball below it, flat face 'base')", false, std::string("bottom"), {"bottom", "top"}},
              {"cells", VT::FloatArray, "cells per side for 'structured-box'; 'tube': through the thickness, around, along", false},
@@ -69,7 +74,12 @@ struct Schemas {
              {"length", VT::Float, "'tube': length along the axis from center", false},
              {"axis", VT::String, "'tube': axis direction", false, std::string("z"), {"x", "y", "z"}},
              {"center", VT::FloatArray, "'tube': x, y, z of the axis point at the tube's start face", false},
-             {"angles", VT::FloatArray, "'tube': first and last angle around the axis in degrees (from y, z or x for axis x, y or z)", false}}};
+             {"angles", VT::FloatArray, "'tube': first and last angle around the axis in degrees (from y, z or x for axis x, y or z)", false},
+             {"grooves", VT::Integer, "'grooved-block': number of grooves along y in the bottom face (z = 0), evenly spaced between equal strips", false,
+              std::int64_t{mesh::GroovedBlockSpec{}.grooves}},
+             {"groove_width", VT::Float, "'grooved-block': groove width along x", false, mesh::GroovedBlockSpec{}.groove_width},
+             {"groove_depth", VT::Float, "'grooved-block': groove depth along z (< lz); the groove ceilings are 'groove-floor'", false,
+              mesh::GroovedBlockSpec{}.groove_depth}}};
     body = {"body",
             {{"name", VT::String, "body name (prefix of its boundary names: 'block/top')", true},
              {"material", VT::String, "name of a [[material]]", true},
@@ -251,6 +261,33 @@ mesh::Mesh make_tube_mesh(const toml::table& t, const std::string& file, const s
   }
 }
 
+// The 'grooved-block' generator's level-0 mesh (the paper's block with strips). Its faces
+// are flat, so levels are uniform refinements of it (8x the tetrahedra per level, as the
+// paper's Table 1), not new meshes. Absent keys keep GroovedBlockSpec's defaults.
+mesh::Mesh make_grooved_block_mesh(const toml::table& t, const std::string& file, const std::string& body) {
+  const auto& S = schemas().mesh;
+  mesh::GroovedBlockSpec spec;
+  if (t.contains("size")) {
+    const auto size = get_floats(t, "size");
+    if (size.size() != 3)
+      throw Error(fmt::format("{}: body '{}': 'grooved-block' needs mesh.size = [lx, ly, lz]", file, body));
+    spec.size = {size[0], size[1], size[2]};
+  }
+  const std::int64_t grooves = get_int(t, S, "grooves");
+  if (grooves < 1 || grooves > 10000)
+    throw Error(fmt::format("{}: body '{}': mesh.grooves = {} (1 to 10000)", file, body, grooves));
+  spec.grooves = static_cast<int>(grooves);
+  spec.groove_width = get_float(t, S, "groove_width");
+  spec.groove_depth = get_float(t, S, "groove_depth");
+  if (t.contains("h")) spec.h = get_float(t, S, "h");
+  if (t.contains("contact_size")) spec.contact_size = get_float(t, S, "contact_size");
+  try {
+    return mesh::generate_grooved_block(spec);
+  } catch (const Error& e) {
+    throw Error(fmt::format("{}: body '{}': {}", file, body, e.what()), e.kind());
+  }
+}
+
 // `refined` is set when the generator already produced the mesh at `level`.
 mesh::Mesh make_body_mesh(const toml::table& t, const std::string& file, const std::string& base_dir,
                           const std::string& body, int level, bool* refined) {
@@ -308,6 +345,7 @@ mesh::Mesh make_body_mesh(const toml::table& t, const std::string& file, const s
     return mesh::generate_sphere_octant(spec);
   }
   if (gen == "tube") return make_tube_mesh(t, file, body, level, refined);
+  if (gen == "grooved-block") return make_grooved_block_mesh(t, file, body);
   const auto size = get_floats(t, "size");
   if (size.size() != 2 && size.size() != 3)
     throw Error(fmt::format("{}: body '{}': mesh.size needs 2 (2D) or 3 (3D) lengths", file, body));

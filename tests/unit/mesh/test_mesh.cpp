@@ -5,10 +5,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <set>
 
 #include "common/error.hpp"
 #include "fem/field_space.hpp"
 #include "mesh/gmsh_io.hpp"
+#include "mesh/grooved_block.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/structured_tube.hpp"
 
@@ -326,6 +328,156 @@ TEST(Generators, TubeRejectsBadDimensions) {
   EXPECT_THROW(structured_tube(spec), Error);
   spec.angles_degrees = {0, 90}, spec.thickness = 0;
   EXPECT_THROW(structured_tube(spec), Error);
+}
+
+// Where each named face of a grooved block lies: every facet's vertices on its plane, the
+// strip bottoms outside the grooves and the floors inside them, each wall at one groove's
+// x0 ("left", the cell behind it on the -x side: outward normal +x) or x1 ("right", cell on
+// the +x side: normal -x) and below the groove depth. Returns facets per name.
+std::map<std::string, int> check_grooved_faces(const Mesh& m, const GroovedBlockSpec& spec) {
+  const auto& L = spec.size;
+  const double d = spec.groove_depth;
+  std::map<std::set<int>, int> opposite;  // facet's vertex set -> the cell's fourth vertex
+  for (int c = 0; c < m.n_cells(); ++c)
+    for (int k = 0; k < 4; ++k) {
+      std::set<int> face;
+      for (int j = 0; j < 4; ++j)
+        if (j != k) face.insert(m.cell(c)[j]);
+      opposite[face] = m.cell(c)[k];
+    }
+  // The plane each face lies in: axis and coordinate (walls: checked below).
+  const std::map<std::string, std::pair<int, double>> plane{{"top", {2, L[2]}},       {"strip-bottom", {2, 0.0}},
+                                                            {"groove-floor", {2, d}}, {"xmin", {0, 0.0}},
+                                                            {"xmax", {0, L[0]}},      {"ymin", {1, 0.0}},
+                                                            {"ymax", {1, L[1]}}};
+  std::map<std::string, int> count;
+  std::map<std::string, std::set<int>> grooves_reached;
+  for (int f = 0; f < m.n_facets(); ++f) {
+    std::string name;
+    for (const auto& [n, tag] : m.facet_tag_names)
+      if (tag == m.facet_tags[f]) name = n;
+    ++count[name];
+    const int* v = m.facet(f);
+    double centre[3] = {0, 0, 0};
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c) centre[c] += m.vertex(v[k])[c] / 3;
+    const bool wall = name == "groove-wall-left" || name == "groove-wall-right";
+    const auto on = plane.find(name);
+    EXPECT_TRUE(wall || on != plane.end()) << "unexpected facet group '" << name << "'";
+    for (int k = 0; k < 3; ++k) {
+      const double* x = m.vertex(v[k]);
+      if (on != plane.end()) {
+        EXPECT_NEAR(x[on->second.first], on->second.second, 1e-12) << name;
+      }
+      if (wall) {
+        EXPECT_NEAR(x[0], centre[0], 1e-12) << name;
+        EXPECT_LE(x[2], d + 1e-12) << name;
+      }
+    }
+    int inside = -1;  // the groove the facet's centre lies over, if any
+    for (int i = 0; i < spec.grooves; ++i)
+      if (centre[0] > groove_span(spec, i)[0] && centre[0] < groove_span(spec, i)[1]) inside = i;
+    if (name == "strip-bottom") {
+      EXPECT_EQ(inside, -1) << "strip bottom under groove " << inside;
+    }
+    if (name == "groove-floor") {
+      EXPECT_GE(inside, 0) << "groove floor at x = " << centre[0];
+      grooves_reached[name].insert(inside);
+    }
+    if (name != "groove-wall-left" && name != "groove-wall-right") continue;
+    const bool left = name == "groove-wall-left";
+    int groove = -1;
+    for (int i = 0; i < spec.grooves; ++i)
+      if (std::abs(centre[0] - groove_span(spec, i)[left ? 0 : 1]) < 1e-12) groove = i;
+    EXPECT_GE(groove, 0) << name << " facet at x = " << centre[0];
+    grooves_reached[name].insert(groove);
+    const auto cell = opposite.find(std::set<int>(v, v + 3));
+    if (cell == opposite.end()) {
+      ADD_FAILURE() << name << " facet bounds no cell";
+      continue;
+    }
+    const double behind = m.vertex(cell->second)[0] - centre[0];  // material side
+    EXPECT_LT(left ? behind : -behind, 0) << name << " at x = " << centre[0] << " faces the wrong way";
+  }
+  for (const char* n : {"groove-wall-left", "groove-wall-right", "groove-floor"})
+    EXPECT_EQ(grooves_reached[n].size(), static_cast<size_t>(spec.grooves)) << n;
+  return count;
+}
+
+// A small grooved block (3 grooves) and its uniform refinement: every named face present
+// and where it belongs, positive cells, the volume lx ly lz - n w d ly to round-off (the
+// faces are flat, so the mesh fills the geometry exactly), refinement keeping all of it.
+TEST(GroovedBlock, FacesWhereTheyBelongAndExactVolume) {
+  GroovedBlockSpec spec;
+  spec.size = {20, 10, 6}, spec.grooves = 3, spec.groove_width = 1, spec.groove_depth = 2.5;
+  spec.h = 2.5, spec.contact_size = 1.2;
+  const Mesh coarse = generate_grooved_block(spec);
+  const auto& L = spec.size;
+  const double volume = L[0] * L[1] * L[2] - spec.grooves * spec.groove_width * spec.groove_depth * L[1];
+  for (const Mesh& m : {coarse, refine(coarse)}) {
+    SCOPED_TRACE(m.n_cells());
+    EXPECT_NO_THROW(check_validity(m, "grooved block"));
+    EXPECT_NEAR(total_measure(m), volume, 1e-9 * volume);
+    EXPECT_EQ(m.cell_tag_names.at("body"), 1);
+    const std::map<std::string, int> count = check_grooved_faces(m, spec);
+    EXPECT_EQ(m.facet_tag_names.size(), 9u);
+    for (const char* n : {"top", "strip-bottom", "groove-wall-left", "groove-wall-right", "groove-floor", "xmin", "xmax",
+                          "ymin", "ymax"}) {
+      EXPECT_TRUE(m.facet_tag_names.count(n)) << n;
+      EXPECT_GT(count.count(n) ? count.at(n) : 0, 0) << n;
+    }
+  }
+}
+
+// Grooves that do not fit, a depth through the block, sizes out of range: clear errors.
+TEST(GroovedBlock, BadSpecsAreRejected) {
+  auto message = [](const GroovedBlockSpec& s) -> std::string {
+    try {
+      generate_grooved_block(s);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  GroovedBlockSpec s;
+  s.grooves = 50;  // 50 grooves 1 wide fill lx = 50
+  EXPECT_NE(message(s).find("do not fit in lx = 50"), std::string::npos) << message(s);
+  s = {}, s.groove_depth = 16;
+  EXPECT_NE(message(s).find("groove_depth = 16 must lie in (0, lz = 16)"), std::string::npos) << message(s);
+  s = {}, s.grooves = 0;
+  EXPECT_NE(message(s).find("at least one groove"), std::string::npos) << message(s);
+  s = {}, s.contact_size = 2 * s.h;
+  EXPECT_NE(message(s).find("at most h"), std::string::npos) << message(s);
+  s = {}, s.groove_width = 0;
+  EXPECT_NE(message(s).find("groove_width must be positive"), std::string::npos) << message(s);
+  s = {}, s.size[1] = -1;
+  EXPECT_NE(message(s).find("side length"), std::string::npos) << message(s);
+}
+
+// The paper's block with strips at the defaults. Level 0 against Table 1 (2 654 vertices,
+// 9 714 tetrahedra, within 10%); the contact vertices (strip bottoms + one wall side) near
+// 3 771 multipliers / 3 = 1 257. Measured (Gmsh 4.8.4): 2 751 vertices, 9 108 tetrahedra,
+// 829 on the strip bottoms, 546 / 548 on the left / right walls, 1 245 on bottoms + left.
+TEST(GroovedBlock, CountsNearThePapersLevel0) {
+  const Mesh m = generate_grooved_block(GroovedBlockSpec{});
+  EXPECT_NO_THROW(check_validity(m, "grooved block"));
+  check_grooved_faces(m, GroovedBlockSpec{});
+  EXPECT_NEAR(m.n_vertices(), 2654, 0.1 * 2654);
+  EXPECT_NEAR(m.n_cells(), 9714, 0.1 * 9714);
+  std::map<std::string, std::set<int>> on;  // vertices of each facet group
+  for (int f = 0; f < m.n_facets(); ++f)
+    for (const auto& [name, tag] : m.facet_tag_names)
+      if (tag == m.facet_tags[f]) on[name].insert(m.facet(f), m.facet(f) + 3);
+  std::set<int> contact = on["strip-bottom"];
+  contact.insert(on["groove-wall-left"].begin(), on["groove-wall-left"].end());
+  EXPECT_NEAR(static_cast<double>(contact.size()), 1257, 0.1 * 1257);
+  // Walls mirror each other: about as many vertices on each side.
+  EXPECT_NEAR(static_cast<double>(on["groove-wall-left"].size()), static_cast<double>(on["groove-wall-right"].size()),
+              0.1 * on["groove-wall-right"].size());
+  // Deterministic: the same spec gives the same mesh.
+  const Mesh again = generate_grooved_block(GroovedBlockSpec{});
+  EXPECT_EQ(again.coords, m.coords);
+  EXPECT_EQ(again.cells, m.cells);
 }
 
 TEST(GmshRead, MissingFileIsAnError) {

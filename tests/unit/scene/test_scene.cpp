@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "common/error.hpp"
+#include "mesh/mesh.hpp"
 #include "scene/scene.hpp"
 #include "builtin_scenes.hpp"
 #include "support/solve_scene.hpp"
@@ -84,6 +85,38 @@ TEST(Scene, GeoScriptLevelsRemeshTheGeometry) {
     ++on_rim;
   }
   EXPECT_GT(on_rim, 40);
+}
+
+// The paper's block with strips through a scene: the generator's defaults (no keys but the
+// generator), level 1 as a uniform refinement (8x the tetrahedra, as in Table 1), the keys
+// reaching the geometry (its volume), and the generator's errors naming file and body.
+TEST(Scene, GroovedBlockGenerator) {
+  std::string text = test::replaced(kMinimal, R"(mesh = { generator = "structured-box", size = [4.0, 1.0], cells = [4, 1] })",
+                                    R"(mesh = { generator = "grooved-block" })");
+  text = test::replaced(text, R"(boundary = "xmin")", R"(boundary = "top")");
+  text = test::replaced(text, R"(components = ["x", "y"])", R"(components = ["x", "y", "z"])");
+  text = test::replaced(text, "value = [0.0, 0.0]", "value = [0.0, 0.0, 0.0]");
+  const auto level0 = build_scene(text, "block.toml", ".", 0), level1 = build_scene(text, "block.toml", ".", 1);
+  EXPECT_EQ(level0->mesh.dim, 3);
+  EXPECT_EQ(level1->mesh.n_cells(), 8 * level0->mesh.n_cells());
+  for (const char* name : {"top", "strip-bottom", "groove-wall-left", "groove-wall-right", "groove-floor", "xmin", "xmax",
+                           "ymin", "ymax"})
+    EXPECT_TRUE(level1->mesh.facet_tag_names.count(std::string("bar/") + name)) << name;
+
+  const std::string custom = test::replaced(
+      text, R"(mesh = { generator = "grooved-block" })",
+      R"(mesh = { generator = "grooved-block", size = [30.0, 20.0, 10.0], grooves = 3, groove_width = 1.5, groove_depth = 4.0, h = 3.0, contact_size = 1.5 })");
+  const auto s = build_scene(custom, "block.toml", ".");
+  double volume = 0;
+  for (int c = 0; c < s->mesh.n_cells(); ++c) volume += mesh::signed_measure(s->mesh, c);
+  EXPECT_NEAR(volume, 30.0 * 20 * 10 - 3 * 1.5 * 4 * 20, 1e-9 * 6000);
+
+  const std::string deep = error_of(test::replaced(custom, "groove_depth = 4.0", "groove_depth = 12.0"));
+  EXPECT_NE(deep.find("test.toml: body 'bar': grooved-block generator: groove_depth = 12"), std::string::npos) << deep;
+  const std::string wide = error_of(test::replaced(custom, "groove_width = 1.5", "groove_width = 10.0"));
+  EXPECT_NE(wide.find("3 grooves 10 wide do not fit in lx = 30"), std::string::npos) << wide;
+  const std::string flat = error_of(test::replaced(custom, "size = [30.0, 20.0, 10.0]", "size = [30.0, 20.0]"));
+  EXPECT_NE(flat.find("'grooved-block' needs mesh.size = [lx, ly, lz]"), std::string::npos) << flat;
 }
 
 TEST(Scene, UnknownKeyNamesFileKeyAndAccepted) {
