@@ -573,6 +573,11 @@ void QuasiStaticSolver::restore(const State& s) {
   completed_step_ = s.step;
 }
 
+bool linear_failure_off_the_path(const StepResult& r) {
+  const size_t n = r.iterations.size();
+  return n >= 2 && r.iterations[n - 2].residual > r.initial_residual;
+}
+
 std::vector<StepResult> QuasiStaticSolver::run(const std::function<void(const StepResult&)>& on_step, int first_step,
                                                int last_step) {
   if (last_step < 0) last_step = problem_.n_steps();
@@ -592,14 +597,8 @@ std::vector<StepResult> QuasiStaticSolver::run(const std::function<void(const St
       StepResult r = solve_increment(k, t);
       r.cut = cut;
       if (!r.converged()) {
-        // A linear solver that cannot solve the increment's first system (boomeramg on an
-        // indefinite one) is not helped by a smaller increment: that system is the converged
-        // state's, whatever the increment. A later one belongs to the increment's Newton path
-        // (ironing-2d level 1, t = 1.1: the residual grew to 4e5 and GMRES broke down at the
-        // eighth iteration), which a smaller increment changes.
-        const bool first_system_failed =
-            r.reason == NewtonReason::DivergedLinearSolver && r.iterations.size() <= 1;
-        r.retried = cut < settings_.max_cuts && !first_system_failed;
+        r.retried = cut < settings_.max_cuts && (r.reason != NewtonReason::DivergedLinearSolver ||
+                                                 linear_failure_off_the_path(r));
         report(r);
         if (!r.retried) return all;
         restore(saved);
