@@ -5,8 +5,8 @@
 #   * <run>.svg: the total contact force (the multiplier's integral, on the upper tube)
 #     against pseudo-time, and the Newton iterations per load increment;
 #   * <run>-contact.png: the contact zone at the last completed step seen from above
-#     (the deformed slave nodes of the upper tube's lower part, within 24 mm of the
-#     symmetry planes, in the x-z plane), coloured by the normal multiplier lambda_n
+#     (the deformed slave nodes facing the lower tube, within 24 mm of the symmetry
+#     planes, in the x-z plane), coloured by the normal multiplier lambda_n
 #     (MPa; the paper's Figure 10 prints its largest value: 26.77 on its mesh, 27.97 after
 #     two refinements), inactive nodes in grey;
 #   * summary.md: per run, the last step, its contact force and the largest lambda_n.
@@ -41,15 +41,17 @@ for run in "$out"/runs/*/; do
     "$steps" > "$out/$name.dat"
   # The last step's slave nodes: x, z, lambda_n, active (1) or not (0).
   last=$(awk -F, '!/^#/ && $1 ~ /^[0-9]+$/ { s = $1 } END { print s }' "$contact")
-  # Only the lower part of the upper tube (within 6 mm of its lowest node), which faces the
-  # lower tube: seen from above, the upper part would hide it.
+  # Only the part of the upper tube that faces the lower one: nodes at most 6 mm above the
+  # highest node in contact (seen from above, the tube's upper wall would hide them).
   awk -F, -v s="$last" '!/^#/ && !header { for (i = 1; i <= NF; i++) col[$i] = i; header = 1; next }
            !/^#/ && $1 == s { n++; x[n] = $col["x"]; y[n] = $col["y"]; z[n] = $col["z"]; l[n] = $col["lambda_n"];
-                              a[n] = ($col["state"] == "inactive" ? 0 : 1); if (n == 1 || y[n] < ymin) ymin = y[n] }
-           END { for (i = 1; i <= n; i++) if (y[i] < ymin + 6) print x[i], z[i], l[i], a[i] }' \
+                              a[n] = ($col["state"] == "inactive" ? 0 : 1); if (a[n] && (!top_set || y[n] > top)) { top = y[n]; top_set = 1 } }
+           END { for (i = 1; i <= n; i++) if (y[i] < top + 6) print x[i], z[i], l[i], a[i] }' \
     "$contact" > "$out/$name-contact.dat"
   read -r t force newton < <(awk '$4 == 1 { t = $1; f = $2 } { n += $3 } END { print t, f, n }' "$out/$name.dat")
-  lmax=$(awk 'BEGIN { m = 0 } $4 == 1 && $3 > m { m = $3 } END { printf "%.2f", m }' "$out/$name-contact.dat")
+  lmax=$(awk -F, -v s="$last" '!/^#/ && !header { for (i = 1; i <= NF; i++) col[$i] = i; header = 1; next }
+               !/^#/ && $1 == s && $col["state"] != "inactive" && $col["lambda_n"] > m { m = $col["lambda_n"] }
+               END { printf "%.2f", m }' "$contact")
   echo "| $name | $last | $t | $force | $lmax | $newton |" >> "$summary"
   gnuplot <<GNUPLOT
 set terminal svg size 900,800 dynamic background '#ffffff'
