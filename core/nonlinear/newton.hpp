@@ -100,15 +100,6 @@ struct StepResult {
   bool converged() const { return nonlinear::converged(reason); }
 };
 
-// Whether an increment that stopped on a failed linear solve is worth retrying over a
-// smaller one: only where Newton had wandered off, i.e. the failed system was assembled at
-// an iterate whose residual exceeds the increment's first one (ironing-2d level 1, t = 1.1:
-// the residual grew to 4e5, the reference being 1.1e3, and GMRES broke down at the eighth
-// iteration). A solver that fails on the increment's first system (the converged state's,
-// whatever the increment), or on a converging Newton path (ilu-gmres on crossed-tubes-3d),
-// is not helped.
-bool linear_failure_off_the_path(const StepResult& r);
-
 class QuasiStaticSolver {
 public:
   QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& problem, const NewtonSettings& settings,
