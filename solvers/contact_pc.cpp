@@ -148,7 +148,7 @@ double ContactPreconditioner::smooth_mode_compliance(Mat M, Mat mass) const {
   return denominator > 0 && -numerator > 0 ? -numerator / denominator : 0.0;
 }
 
-void ContactPreconditioner::setup(Mat M, IS multipliers, Mat schur_mass, Mat schur_stiffness,
+void ContactPreconditioner::setup(Mat M, IS multipliers, Mat schur_mass, Mat schur_stiffness, Mat schur_slip,
                                   const ShellPreconditioner& inner) {
   if (!schur_mass) throw Error("contact preconditioner: the system has no multiplier mass", ErrorKind::Internal);
   inner_ = &inner;
@@ -168,6 +168,7 @@ void ContactPreconditioner::setup(Mat M, IS multipliers, Mat schur_mass, Mat sch
     STICTION_PETSC(MatAXPY(S_, 1.0, G, DIFFERENT_NONZERO_PATTERN));
   else
     STICTION_PETSC(MatAXPY(S_, scale_, schur_mass, DIFFERENT_NONZERO_PATTERN));
+  if (schur_slip) STICTION_PETSC(MatAXPY(S_, scale_, schur_slip, DIFFERENT_NONZERO_PATTERN));
   // PETSc 3.18's LU with inodes and a fill-reducing ordering (nd, rcm) met a zero pivot and
   // NaNs on the fractional model's dense block of a symmetric positive definite S~
   // (sliding-block-2d, level 0): without inodes, or in natural order, it factors.

@@ -68,7 +68,10 @@ public:
   // M: the whole contact system; inner must already be set up on it (it reads and writes
   // only the non-multiplier blocks of full-length vectors).
   // schur_stiffness (Pi K Pi) is read by the fractional model only; it may be null.
-  void setup(Mat M, IS multipliers, Mat schur_mass, Mat schur_stiffness, const ShellPreconditioner& inner);
+  // schur_slip (MultiplierConstraint::schur_slip_coupling) enters S~ scaled like the mass; it
+  // may be null.
+  void setup(Mat M, IS multipliers, Mat schur_mass, Mat schur_stiffness, Mat schur_slip,
+             const ShellPreconditioner& inner);
   void apply(Vec r, Vec x) const override;
 
   // Replaces S~ (e.g. the exact S_g in tests); after setup().

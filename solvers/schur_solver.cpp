@@ -29,6 +29,7 @@ void SchurSolver::configure(const nonlinear::NewtonSystem& system) {
   if (const auto* lambda = system.field("lambda")) {
     if (!contact_) contact_ = std::make_unique<ContactPreconditioner>(system.comm, options_prefix(this->name()));
     contact_->setup(system.matrix, lambda->is, system.multiplier_schur_mass, system.multiplier_schur_stiffness,
+                    system.multiplier_schur_slip,
                     *inner);
     inner = contact_.get();
     name = "global Schur level (33) (factors: contact_fact) with " + std::string(pressure ? "MHP (11)" : "HP (10)") +

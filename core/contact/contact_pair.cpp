@@ -30,6 +30,7 @@ ContactPair::ContactPair(std::string name, const fem::FieldSpace& space, int sla
   state_.assign(slave_.n_nodes(), NodeState::Inactive);
   last_dlambda_t_.assign(slave_.n_nodes(), Vec3::Zero());
   normals_.assign(slave_.n_nodes(), Vec3::Zero());
+  slip_rows_.assign(slave_.n_nodes(), Mat3::Zero());
   r_t_.resize(slave_.n_nodes());
   for (int i = 0; i < slave_.n_nodes(); ++i) r_t_[i] = initial_r_t(i);
   u_previous_.assign(space.n_dofs(), 0.0);
@@ -85,6 +86,7 @@ void ContactPair::evaluate(double t, const std::vector<double>& u, const double*
     if (settings_.mass_weighted_rows) row = weighted_by_mass(row, s, k.n, slave_.lumped_mass[i]);
     for (int c = 0; c < d; ++c) r_c[i * d + c] = row.c[c];
     if (!jacobian) continue;
+    slip_rows_[i] = s == NodeState::Slip ? row.d_slip : Mat3::Zero();
     const PetscInt row0 = offset + static_cast<PetscInt>(i) * d;
     for (int c = 0; c < d; ++c)
       for (int e = 0; e < d; ++e)
@@ -111,6 +113,14 @@ int ContactPair::update_states(double t, const std::vector<double>& u, const dou
   const double entry = entry_depth(nodes);
   const int d = dim_;
   int changes = 0;
+  // r_t adapts only while Newton still moves the multipliers (the update above
+  // settle_tolerance of them). Closer in, the cosine of two consecutive corrections measures
+  // linear-solve and round-off noise, not a drifting slip direction, and each factor of 20
+  // changes the slip rows' equations: a^ of (19) depends on r_t until lambda_t and g_t are
+  // exactly antiparallel. Adapting to the end, block-strips level 0 (lu-mumps, first sliding
+  // step) reached a contact residual of 5e-7 with fixed states, then rose to 3e-4 as r_t
+  // jumped, and failed after 25 iterations; with r_t held there it converged in 11.
+  const bool adapt_r_t = !multipliers_settled(lambda, dlambda);
   for (int i = 0; i < slave_.n_nodes(); ++i) {
     const NodeKinematics& k = nodes[i];
     normals_[i] = k.n;
@@ -123,7 +133,7 @@ int ContactPair::update_states(double t, const std::vector<double>& u, const dou
     // Adaptive r_t (Sec. 4.4): consecutive tangential corrections pointing the same way mean
     // r_t is too small (grow it), opposite ways mean it overshoots (shrink it).
     const Vec3 dt = dlam - k.n * k.n.dot(dlam), last = last_dlambda_t_[i];
-    if (state_[i] == NodeState::Slip && next == NodeState::Slip && dt.norm() > 0 && last.norm() > 0) {
+    if (adapt_r_t && state_[i] == NodeState::Slip && next == NodeState::Slip && dt.norm() > 0 && last.norm() > 0) {
       const double cosine = dt.dot(last) / (dt.norm() * last.norm());
       if (cosine > 0.8) r_t_[i] *= 20;
       if (cosine < 0.3) r_t_[i] /= 20;
@@ -244,6 +254,27 @@ void ContactPair::schur_mass(nonlinear::SparseEntries& out, PetscInt offset) con
 
 void ContactPair::schur_stiffness(nonlinear::SparseEntries& out, PetscInt offset) const {
   add_projected(slave_.stiffness_i, slave_.stiffness_j, slave_.stiffness_v, out, offset);
+}
+
+// The slip rows' coupling: a slipping node's tangential row depends on u through its slip
+// S_i = B_i u (19), so the Schur complement's row i holds dc_i/dS_i (B A^-1 B^T)_ij, which
+// Pi M Pi (Pi_i = n n^T there) leaves out. In 3D that row's multiplier block loses the
+// direction t2 orthogonal to n and the slip direction a^ when |lambda_t| = mu lambda_n and
+// g_t = 0, as at the start of every increment of a self-contact pair whose nodes slipped
+// in the last one (nothing has moved yet): the approximation's t2 row is then zero and its
+// LU breaks down (block-strips with 0.5 mm grooves, schur-amg, step 8: DIVERGED_NANORINF
+// at the first solve). Approximated like the rest of (32), with B A^-1 B^T ~ s M: rows
+// dc_i/dS_i M_ij over the constrained nodes j (columns unprojected: B^T acts on every
+// component of lambda_j).
+void ContactPair::schur_slip_coupling(nonlinear::SparseEntries& out, PetscInt offset) const {
+  const int d = dim_;
+  for (size_t k = 0; k < slave_.mass_v.size(); ++k) {
+    const int i = slave_.mass_i[k], j = slave_.mass_j[k];
+    if (state_[i] != NodeState::Slip || state_[j] == NodeState::Inactive || slip_rows_[i].isZero(0.0)) continue;
+    for (int c = 0; c < d; ++c)
+      for (int e = 0; e < d; ++e)
+        if (slip_rows_[i](c, e) != 0) out.add(offset + i * d + c, offset + j * d + e, slave_.mass_v[k] * slip_rows_[i](c, e));
+  }
 }
 
 nonlinear::ConstraintSummary ContactPair::summary(const double* lambda) const {

@@ -95,6 +95,7 @@ public:
   std::vector<char> states() const override;
   void schur_mass(nonlinear::SparseEntries& out, PetscInt offset) const override;
   void schur_stiffness(nonlinear::SparseEntries& out, PetscInt offset) const override;
+  void schur_slip_coupling(nonlinear::SparseEntries& out, PetscInt offset) const override;
   nonlinear::ConstraintSummary summary(const double* lambda) const override;
   std::vector<nonlinear::MultiplierNode> nodes(double t, const std::vector<double>& u,
                                               const double* lambda) const override;
@@ -112,7 +113,8 @@ public:
   void set_state(int node, NodeState s) { state_[node] = s; }  // for tests
 
 protected:
-  // The master's part: kinematics of every slave node at u (with derivatives when asked)
+  // The master's part: kinematics of every slave node at u (with derivatives when asked; an
+  // implementation may leave them out at inactive nodes, whose rows do not read them)
   // and, when r_u is not null, the constraint forces r_u -= B^T lambda (with the blocks
   // -B^T and d(-B^T lambda)/du added to jacobian when it is not null).
   virtual void compute_kinematics(double t, const std::vector<double>& u, const double* lambda,
@@ -144,6 +146,8 @@ private:
   // Normals at the last iterate evaluated with its Jacobian (for schur_mass and schur_stiffness, which the
   // Newton driver calls right after assembling that Jacobian) or updated on.
   mutable std::vector<Vec3> normals_;
+  // d c_i / d S_i of every slipping node's row at that iterate (zero elsewhere).
+  mutable std::vector<Mat3> slip_rows_;
   // The last update changed no state (or held them) and moved the multipliers by at most
   // settle_tolerance relative to them.
   bool settled_ = false;

@@ -530,7 +530,7 @@ SurfaceContact::SurfaceContact(std::string name, const fem::FieldSpace& space, i
 }
 
 template <int D>
-void SurfaceContact::nodal_normals(const std::vector<double>& u, bool with_derivatives,
+void SurfaceContact::nodal_normals(const std::vector<double>& u, const std::vector<char>& derive,
                                    std::vector<NodeKinematics>& nodes) const {
   using G = Geometry<D>;
   using Vec = typename G::Vec;
@@ -538,7 +538,7 @@ void SurfaceContact::nodal_normals(const std::vector<double>& u, bool with_deriv
   const FacetEvaluator<D> ev(space_.kind(), space_.nodes_per_facet());
   const fem::QuadratureRule rule = fem::simplex_quadrature(P, 3);  // phi_i |x,0 x x,1| is cubic
   std::vector<Vec> m(nodes.size(), Vec::Zero());
-  std::vector<std::map<PetscInt, Vec>> dm(with_derivatives ? nodes.size() : 0);
+  std::vector<std::map<PetscInt, Vec>> dm(nodes.size());
   for (const Facet& f : slave_facets_)
     for (int q = 0; q < rule.size(); ++q) {
       const typename G::Param eta = Eigen::Map<const typename G::Param>(rule.point(q));
@@ -548,7 +548,7 @@ void SurfaceContact::nodal_normals(const std::vector<double>& u, bool with_deriv
         const int i = f.node_of_vertex[k];
         const double wphi = rule.weights[q] * facets::vertex_hat<D>(k, eta);
         m[i] += wphi * normal;
-        if (!with_derivatives) continue;
+        if (!derive[i]) continue;
         for (int a = 0; a < ev.n(); ++a)
           for (int c = 0; c < D; ++c)
             accumulate<Vec>(dm[i], static_cast<PetscInt>(f.nodes[a]) * D + c,
@@ -559,7 +559,7 @@ void SurfaceContact::nodal_normals(const std::vector<double>& u, bool with_deriv
     const double length = m[i].norm();
     const Vec n = -m[i] / length;  // from the master towards the slave
     nodes[i].n = lift<D>(n);
-    if (!with_derivatives) continue;
+    if (!derive[i]) continue;
     const Eigen::Matrix<double, D, D> Pn = (Eigen::Matrix<double, D, D>::Identity() - n * n.transpose()) / length;
     for (const auto& [dof, column] : dm[i]) nodes[i].dn[dof] = lift<D>(Vec(-Pn * column));
   }
@@ -578,7 +578,26 @@ void SurfaceContact::kinematics(const std::vector<double>& u, const double* lamb
                                 std::vector<NodeKinematics>& nodes) const {
   const FacetEvaluator<D> ev(space_.kind(), space_.nodes_per_facet());
   nodes.assign(slave_.n_nodes(), NodeKinematics{});
-  nodal_normals<D>(u, with_derivatives, nodes);
+  // Derivatives only where the Jacobian reads them: an inactive node's row (c = lambda) does
+  // not depend on u, so its G, S and n need none. A facet needs the master point's
+  // derivatives when one of its nodes is in contact or carries a multiplier (the forces'
+  // variation). Far from contact most of a self-contact surface is inactive (the groove walls
+  // of block-strips), and the derivative maps were most of its assembly time.
+  std::vector<char> derive(slave_.n_nodes(), 0);
+  if (with_derivatives)
+    for (int i = 0; i < slave_.n_nodes(); ++i) derive[i] = state(i) != NodeState::Inactive;
+  auto facet_derives = [&](const Facet& f) {
+    if (!with_derivatives) return false;
+    for (int k = 0; k < D; ++k) {
+      const int i = f.node_of_vertex[k];
+      if (derive[i]) return true;
+      if (lambda)
+        for (int c = 0; c < D; ++c)
+          if (lambda[D * i + c] != 0) return true;
+    }
+    return false;
+  };
+  nodal_normals<D>(u, derive, nodes);
   std::vector<double> covered(slave_.n_nodes(), 0.0);  // integral of phi_i over projected points
 
   std::vector<std::pair<Box<D>, int>> boxes;
@@ -602,15 +621,16 @@ void SurfaceContact::kinematics(const std::vector<double>& u, const double* lamb
       continue;
     }
     const double jacobian_f = facets::reference_jacobian<D>(f);
+    const bool derive_f = facet_derives(f);
     for (const auto& [eta, weight] : integration_points<D>(ev, f, candidates, u)) {
       const PointKinematics<D> p =
-          point_kinematics<D>(ev, f, eta, candidates, u, u_previous_, search_radius_, with_derivatives);
+          point_kinematics<D>(ev, f, eta, candidates, u, u_previous_, search_radius_, derive_f);
       if (p.branches.empty()) continue;
       Vec3 lam_w = Vec3::Zero();
       for (int k = 0; k < D; ++k) {
         const int i = f.node_of_vertex[k];
         const double wphi = weight * jacobian_f * facets::vertex_hat<D>(k, eta);
-        add_node_kinematics<D>(ev, f, p, wphi, with_derivatives, nodes[i]);
+        add_node_kinematics<D>(ev, f, p, wphi, derive_f && derive[i], nodes[i]);
         covered[i] += wphi;
         if (!r_u) continue;
         Vec3 lam = Vec3::Zero();
@@ -620,7 +640,7 @@ void SurfaceContact::kinematics(const std::vector<double>& u, const double* lamb
         add_node_forces<D>(ev, f, p, wphi, lam, offset + static_cast<PetscInt>(i) * D, *r_u,
                            jacobian ? &facet_entries : nullptr);
       }
-      if (r_u && jacobian) add_force_variation<D>(ev, p, lam_w, facet_entries);
+      if (r_u && jacobian && derive_f) add_force_variation<D>(ev, p, lam_w, facet_entries);
     }
     if (jacobian) facet_entries.flush_into(*jacobian);
   }

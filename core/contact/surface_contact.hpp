@@ -82,7 +82,9 @@ private:
                   nonlinear::SparseEntries* jacobian, PetscInt offset, bool with_derivatives,
                   std::vector<NodeKinematics>& nodes) const;
   template <int D>
-  void nodal_normals(const std::vector<double>& u, bool with_derivatives, std::vector<NodeKinematics>& nodes) const;
+  // n_i of every slave node; dn_i where derive[i].
+  void nodal_normals(const std::vector<double>& u, const std::vector<char>& derive,
+                     std::vector<NodeKinematics>& nodes) const;
 
   const fem::FieldSpace& space_;
   std::vector<SurfaceFacet> slave_facets_, master_facets_;

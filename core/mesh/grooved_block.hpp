@@ -21,26 +21,25 @@
 namespace stiction::mesh {
 
 // Defaults: the paper's block (50 x 50 x 16 mm). The paper gives no groove dimensions;
-// chosen here: 5 grooves 1 mm wide and 8 mm deep (tread depth), so 6 strips 7.5 mm wide
-// and 8 mm tall. Why 1 mm: with the top clamped, the strip bottoms pressed up 1.5 mm and
-// held while moved 6 mm along -x (linear, E = 1, nu = 0.3, no self-contact; the default
-// mesh), the walls bulge into the grooves at mid-height, closing them by up to 1.9 mm:
-// 2 mm grooves stay 0.09-0.8 mm open, 1 mm ones overlap by 0.2-0.8 mm at every groove, so
-// the walls touch. With the paper's mu = 0.3 the bottoms slip once they lag the ground by
-// about 2 mm (mean |sigma_xz / sigma_zz| reaches 0.3 there); then 1 mm grooves keep about
-// 0.5 mm and 0.5 mm ones just close (-0.03 to 0.2 mm), at worse tetrahedra (the narrow
-// groove ceilings: smallest mean-ratio quality 0.21 against 0.32); set groove_width = 0.5
-// for that case (level 0: about 2 890 vertices, 9 600 tetrahedra). Sizes: contact_size on the strip bottoms, linear in z up to h at the top,
-// tuned so that level 0 has 2 751 vertices and 9 108 tetrahedra (Table 1: 2 654, 9 714;
-// level 1: 16 923 vertices against 16 916), and 1 245 vertices on the strip bottoms and
-// one wall side (the paper's 3 771 multipliers / 3 = 1 257).
+// chosen here: 5 grooves 0.5 mm wide and 8 mm deep (tread depth), so 6 strips 7.9 mm wide
+// and 8 mm tall. Why 0.5 mm: the paper's load (bottoms pressed up 1.5 mm, then the ground
+// slid 6 mm with mu = 0.3, linear E = 1, nu = 0.3) makes the walls bulge into the grooves;
+// once the bottoms slip (they lag the ground by about 2 mm) the bulge closes a groove by
+// about 0.5-0.7 mm. Solved with the groove walls as a contact pair, 1 mm grooves keep at
+// least 0.33 mm open to the end (no wall node ever touches), 0.5 mm ones close: wall nodes
+// touch and slip in the last three steps. Narrower grooves would need smaller elements at
+// their ceilings (0.5 mm already lowers the smallest mean-ratio quality from 0.32 to 0.21).
+// Sizes: contact_size on the strip bottoms, linear in z up to h at the top, tuned to
+// Table 1 at level 0: 2 675 vertices, 8 900 tetrahedra, 49 482 displacement unknowns
+// (Table 1: 2 654, 9 714, 50 748) and 818 + 525 = 1 343 multiplier nodes on the strip
+// bottoms and the left walls (3 771 / 3 = 1 257); levels are uniform refinements.
 struct GroovedBlockSpec {
   std::array<double, 3> size{50.0, 50.0, 16.0};  // lx, ly, lz
   int grooves = 5;
-  double groove_width = 1.0;
+  double groove_width = 0.5;
   double groove_depth = 8.0;
   double h = 4.8;              // element size at the top (z = lz)
-  double contact_size = 2.05;  // element size on the strip bottoms (z = 0); at most h
+  double contact_size = 2.15;  // element size on the strip bottoms (z = 0); at most h
 };
 
 // x range [x0, x1] of groove i (0 <= i < grooves).

@@ -80,6 +80,10 @@ public:
   // The same projection of the surface Laplacian, Pi K Pi (K = int grad_s phi_i . grad_s
   // phi_j): with Pi M Pi it spans the fractional Schur model of the contact preconditioner.
   virtual void schur_stiffness(SparseEntries& out, PetscInt offset) const = 0;
+  // Where a constrained row depends on the displacement through more than Pi (a slipping
+  // node's tangential row through its slip, (19)), that dependence times M_lambda:
+  // sum_j dc_i/dS_i M_ij over the constrained nodes j. Empty by default.
+  virtual void schur_slip_coupling(SparseEntries& out, PetscInt offset) const {}
   virtual ConstraintSummary summary(const double* lambda) const = 0;
   // Everything besides the multipliers that a converged state carries into the next
   // increment (the contact states), to retry a failed increment from it.

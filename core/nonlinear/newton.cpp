@@ -258,7 +258,7 @@ void QuasiStaticSolver::assemble_system(const Residuals& r, bool lift) {
   stiffness_->end_assembly();
   if (!lambda_.empty()) {
     // The augmented matrix (30): the tangent bordered by -B^T, C_u and C_lambda.
-    SparseEntries blocks, mass, surface_stiffness;
+    SparseEntries blocks, mass, surface_stiffness, slip_coupling;
     std::vector<double> scratch_u(space.n_dofs()), scratch_c(lambda_.size());
     const PetscInt n_u = space.n_dofs();
     for (size_t k = 0; k < problem_.constraints.size(); ++k) {
@@ -266,6 +266,7 @@ void QuasiStaticSolver::assemble_system(const Residuals& r, bool lift) {
                                         scratch_c.data() + constraint_offset_[k], &blocks, n_u + constraint_offset_[k]);
       problem_.constraints[k]->schur_mass(mass, constraint_offset_[k]);
       problem_.constraints[k]->schur_stiffness(surface_stiffness, constraint_offset_[k]);
+      problem_.constraints[k]->schur_slip_coupling(slip_coupling, constraint_offset_[k]);
     }
     *system_.matrix.out() = build_augmented_matrix(stiffness_->mat(), static_cast<PetscInt>(lambda_.size()), blocks);
     STICTION_PETSC(MatSetNearNullSpace(system_.matrix, system_.near_null_space));
@@ -273,6 +274,8 @@ void QuasiStaticSolver::assemble_system(const Residuals& r, bool lift) {
         build_sparse_matrix(system_.comm, static_cast<PetscInt>(lambda_.size()), mass);
     *system_.multiplier_schur_stiffness.out() =
         build_sparse_matrix(system_.comm, static_cast<PetscInt>(lambda_.size()), surface_stiffness);
+    *system_.multiplier_schur_slip.out() =
+        build_sparse_matrix(system_.comm, static_cast<PetscInt>(lambda_.size()), slip_coupling);
   }
   std::vector<double> b(r.u.size() + r.c.size());
   for (size_t i = 0; i < r.u.size(); ++i) b[i] = -r.u[i];

@@ -31,6 +31,7 @@ struct NewtonSystem {
   // (32) on the lambda block's numbering (see MultiplierConstraint::schur_mass).
   PetscMat multiplier_schur_mass;
   PetscMat multiplier_schur_stiffness;  // Pi K Pi likewise (MultiplierConstraint::schur_stiffness)
+  PetscMat multiplier_schur_slip;       // MultiplierConstraint::schur_slip_coupling
 
   const FieldBlock* field(const std::string& name) const {
     for (const auto& f : fields)

@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <random>
+
+#include <Eigen/SVD>
 #include <string>
 
 #include "contact/rigid_plane_contact.hpp"
@@ -347,6 +349,84 @@ TEST(SurfaceContact, JacobianMatchesFiniteDifferencesAtAConvergedSelfContactStat
   std::uniform_real_distribution<double> U(-1, 1);
   for (double& x : u) x += 1e-4 * U(rng);
   expect_exact_directional_derivatives(pair, s->problem.step_times[5], s->space->n_dofs(), u, newton.multipliers());
+}
+
+// The slip rows' equations (19) at fixed (u, lambda), all nodes slipping (r_t enters them).
+std::vector<double> slip_rows(ContactPair& pair, int n_u, const std::vector<double>& u,
+                              const std::vector<double>& lambda) {
+  std::vector<double> ru(n_u, 0.0), rc(pair.n_multipliers(), 0.0);
+  for (int i = 0; i < pair.slave().n_nodes(); ++i) pair.set_state(i, NodeState::Slip);
+  pair.evaluate(1, u, lambda.data(), ru, rc.data(), nullptr, n_u);
+  return rc;
+}
+
+// The adaptive r_t of Sec. 4.4 changes only while Newton's corrections move the multipliers
+// by more than settle_tolerance (1%) of them: two corrections of 0.1% along lambda leave
+// the slip rows as they were; two of 50% (the same direction twice: cosine 1, r_t x 20)
+// change them.
+TEST(RigidPlaneContact, TangentialPenaltyAdaptsOnlyWhileTheMultipliersMove) {
+  auto s = scene::build_scene(kBlockOnPlane, "block-on-plane", ".");
+  auto& pair = dynamic_cast<RigidPlaneContact&>(*s->contacts.at(0));
+  const int n_u = s->space->n_dofs();
+  std::vector<double> u0, u, lambda;
+  random_state(pair, n_u, 0.02, 2, u0, u, lambda);
+  pair.begin_increment(0.0, u0);
+  const std::vector<double> before = slip_rows(pair, n_u, u, lambda);
+  auto two_corrections = [&](double fraction) {
+    std::vector<double> dl(lambda.size());
+    for (size_t k = 0; k < dl.size(); ++k) dl[k] = fraction * lambda[k];
+    for (int k = 0; k < 2; ++k) {
+      for (int i = 0; i < pair.slave().n_nodes(); ++i) pair.set_state(i, NodeState::Slip);
+      pair.update_states(1, u, lambda.data(), dl.data());
+    }
+    return slip_rows(pair, n_u, u, lambda);
+  };
+  const std::vector<double> settled = two_corrections(1e-3);
+  for (size_t k = 0; k < before.size(); ++k) EXPECT_EQ(settled[k], before[k]) << "row " << k;
+  const std::vector<double> moving = two_corrections(0.5);
+  double change = 0, size = 0;
+  for (size_t k = 0; k < before.size(); ++k)
+    change = std::max(change, std::abs(moving[k] - before[k])), size = std::max(size, std::abs(before[k]));
+  EXPECT_GT(change, 1e-3 * size);
+}
+
+// A 3D slipping node at the start of an increment (g_t = 0) whose multiplier sits on the
+// Coulomb cone (|lambda_t| = mu lambda_n) has a multiplier block without the direction t2
+// orthogonal to n and lambda_t; the Schur approximation D + Pi M Pi is singular there
+// (Pi = n n^T) and the slip rows' coupling dc/dS M restores that direction.
+TEST(RigidPlaneContact, SlipCouplingKeepsTheSchurApproximationRegularOnTheCone) {
+  auto s = scene::build_scene(kBlockOnPlane, "block-on-plane", ".");
+  auto& pair = dynamic_cast<RigidPlaneContact&>(*s->contacts.at(0));
+  const int n_u = s->space->n_dofs(), n_l = pair.n_multipliers(), n_nodes = pair.slave().n_nodes();
+  std::vector<double> u0, u, lambda;
+  random_state(pair, n_u, 0.02, 2, u0, u, lambda);
+  pair.begin_increment(1.0, u);  // t = 1 and u at the increment's start: no slip yet
+  std::vector<double> ru(n_u, 0.0), rc(n_l, 0.0);
+  for (int i = 0; i < n_nodes; ++i) pair.set_state(i, NodeState::Slip);
+  // lambda on the cone of mu = 0.4 about each node's normal (the plane's).
+  const Vec3 n = Vec3(0.1, 0.0, 1.0).normalized();
+  for (int i = 0; i < n_nodes; ++i) {
+    Vec3 l(lambda[3 * i], lambda[3 * i + 1], lambda[3 * i + 2]);
+    const double ln = std::abs(n.dot(l)) + 0.5;
+    const Vec3 lt = (l - n * n.dot(l)).normalized();
+    l = ln * n + 0.4 * ln * lt;
+    for (int c = 0; c < 3; ++c) lambda[3 * i + c] = l[c];
+  }
+  nonlinear::SparseEntries J, mass, coupling;
+  pair.evaluate(1, u, lambda.data(), ru, rc.data(), &J, n_u);
+  pair.schur_mass(mass, 0);
+  pair.schur_slip_coupling(coupling, 0);
+  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(n_l, n_l), M = D, C = D;
+  for (size_t k = 0; k < J.size(); ++k)
+    if (J.rows[k] >= n_u && J.cols[k] >= n_u) D(J.rows[k] - n_u, J.cols[k] - n_u) += J.values[k];
+  for (size_t k = 0; k < mass.size(); ++k) M(mass.rows[k], mass.cols[k]) += mass.values[k];
+  for (size_t k = 0; k < coupling.size(); ++k) C(coupling.rows[k], coupling.cols[k]) += coupling.values[k];
+  auto conditioning = [](const Eigen::MatrixXd& A) {
+    const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(A).singularValues();
+    return sv(sv.size() - 1) / sv(0);
+  };
+  EXPECT_LT(conditioning(D + M), 1e-12);
+  EXPECT_GT(conditioning(D + M + C), 1e-6);
 }
 
 TEST(ContactState, Transitions) {
