@@ -35,7 +35,7 @@ TEST(ContactPreconditioner, ExactSubSolvesGiveTheExactInverse) {
   ExactHierarchical exact(sys, "test_cpc_hp_");
   set_options("test_cpc_", {{"ss_ksp_type", "preonly"}, {"ss_pc_type", "lu"}, {"contact_fact", "full"}});
   solvers::ContactPreconditioner cp(PETSC_COMM_WORLD, "test_cpc_");
-  cp.setup(sys.matrix, lambda->is, sys.multiplier_schur_mass, sys.multiplier_schur_stiffness, exact.hp);
+  cp.setup(sys.matrix, lambda->is, sys.multiplier_schur_mass, sys.multiplier_schur_stiffness, sys.multiplier_schur_slip, exact.hp);
   // The automatic scale is the geometric mean of the element-end and body-end compliances,
   // and the body's smooth modes are far more compliant than one surface element.
   const auto estimates = cp.scale_estimates();
@@ -61,7 +61,7 @@ TEST(ContactPreconditioner, ExactSubSolvesGiveTheExactInverse) {
   // displacement part, as after a converged load step's last update).
   for (const char* fact : {"upper", "lower"}) {
     set_options("test_cpc_", {{"contact_fact", fact}});
-    cp.setup(sys.matrix, lambda->is, sys.multiplier_schur_mass, sys.multiplier_schur_stiffness, exact.hp);
+    cp.setup(sys.matrix, lambda->is, sys.multiplier_schur_mass, sys.multiplier_schur_stiffness, sys.multiplier_schur_slip, exact.hp);
     cp.set_schur_operator(S);
     EXPECT_LE(gmres_iterations(sys, cp, &residual), 2) << fact;
     EXPECT_LT(residual, 1e-9) << fact;
@@ -120,7 +120,7 @@ TEST(ContactPreconditioner, FractionalModelFollowsTheSchurComplementBetterThanTh
     const std::string prefix = std::string("test_frac_") + models[m] + "_";
     set_options(prefix, {{"ss_ksp_type", "preonly"}, {"ss_pc_type", "lu"}, {"contact_schur", models[m]}});
     solvers::ContactPreconditioner cp(PETSC_COMM_WORLD, prefix);
-    cp.setup(sys.matrix, lambda->is, sys.multiplier_schur_mass, sys.multiplier_schur_stiffness, exact.hp);
+    cp.setup(sys.matrix, lambda->is, sys.multiplier_schur_mass, sys.multiplier_schur_stiffness, sys.multiplier_schur_slip, exact.hp);
     EXPECT_EQ(cp.fractional_fit().fitted, m == 1);
     iterations[m] = gmres_iterations(sys, cp, &residual);
     EXPECT_LT(residual, 1e-9);
