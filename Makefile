@@ -1,13 +1,16 @@
 # Two commands do everything on a fresh Debian 12 machine:
 #   make test    install missing packages, configure, build, run the whole test suite
-#   make bench   same set-up, then run the default benchmark and write reports/
+#   make bench   same set-up, then the paper's benchmark (Tables 1-3, block with strips)
+#                in reports/paper-tables/ (BENCH_LEVELS=0,1,2 for the full tables)
+#   make bench-all   every built-in scene x every backend in reports/latest/, and the
+#                large-sliding reports (ironing, crossed tubes)
 BUILD ?= build
 JOBS  ?= 2
 # hypre is an OpenMP build and OpenBLAS threads: one thread each unless asked otherwise.
 export OMP_NUM_THREADS ?= 1
 export OPENBLAS_NUM_THREADS ?= 1
 
-.PHONY: all deps configure build test bench clean
+.PHONY: all deps configure build test bench bench-all clean
 
 all: build
 
@@ -24,7 +27,10 @@ test: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 bench: build
-	@bash scripts/bench.sh $(BUILD)
+	@bash scripts/paper-tables.sh $(BUILD)
+
+bench-all: build
+	@bash scripts/bench-all-scenes.sh $(BUILD)
 
 clean:
 	rm -rf $(BUILD)

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -24,7 +25,8 @@ namespace fs = std::filesystem;
 namespace {
 
 const char* kRunColumns =
-    "scene,level,solver,status,converged,reason,unknowns,unknowns_u_l,unknowns_u_q,load_steps,"
+    "scene,level,solver,status,converged,reason,unknowns,unknowns_u_l,unknowns_u_q,unknowns_p,multipliers,vertices,"
+    "cells,load_steps,"
     "load_steps_completed,newton_iterations,linear_solves,krylov_iterations,krylov_per_linear_solve,wall_seconds,"
     "assembly_seconds,setup_seconds,solve_seconds,seconds_per_linear_solve,peak_rss_mb,mumps_memory_mb,"
     "amg_operator_complexity,krylov_rtol,detail";
@@ -107,11 +109,12 @@ void write_rows(const std::string& out, const Run& run, const ChildResult& child
   if (status != "ok" && status != "newton-failed") detail = last_line(run_dir + "/stderr.txt");
   if (child.hit_time_limit) detail = fmt::format("stopped after {:.0f} s", child.wall_seconds);
   const std::string row = fmt::format(
-      "{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.2f},{:.3f},{:.3f},{:.3f},{:.3f},{:.4f},"
+      "{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.2f},{:.3f},"
+      "{:.3f},{:.3f},{:.3f},{:.4f},"
       "{:.1f},{:.0f},{:.3f},{},{}",
       run.scene, run.level, run.solver, status, m["converged"].value<bool>().value_or(false) ? 1 : 0,
       csv_field(m["reason"].value<std::string>().value_or(status)), num("unknowns"), num("unknowns_u_l"),
-      num("unknowns_u_q"), num("load_steps"), num("load_steps_completed"), num("newton_iterations"), solves,
+      num("unknowns_u_q"), num("unknowns_p"), num("multipliers"), num("vertices"), num("cells"), num("load_steps"), num("load_steps_completed"), num("newton_iterations"), solves,
       num("krylov_iterations"), solves > 0 ? num("krylov_iterations") / solves : 0.0, child.wall_seconds,
       num("assembly_seconds"), num("setup_seconds"), num("solve_seconds"),
       solves > 0 ? (num("setup_seconds") + num("solve_seconds")) / solves : 0.0, child.peak_rss_mb, mumps,
@@ -119,6 +122,49 @@ void write_rows(const std::string& out, const Run& run, const ChildResult& child
       csv_field(detail));
   if (!steps.empty()) append_durably(out + "/steps.csv", steps);
   append_durably(out + "/runs.csv", row);
+}
+
+// Estimated wall time of a run that has not finished, from the finished ones (seconds; 0:
+// no basis yet). The same scene and backend one level down, times the growth that backend
+// showed between those two levels on another scene, or 15 (about n^1.3 for 8x the
+// unknowns) when none did; without a run one level down, the mean of the finished runs
+// at this level.
+double estimate_seconds(const Run& run, const std::map<std::string, double>& finished) {
+  auto seconds = [&](const std::string& scene, const std::string& solver, int level) {
+    const auto it = finished.find(Run{scene, solver, level}.key());
+    return it == finished.end() ? 0.0 : it->second;
+  };
+  if (const double below = seconds(run.scene, run.solver, run.level - 1); below > 0) {
+    double growth = 15;
+    for (const auto& [key, t] : finished) {
+      const auto bar = key.find('|'), bar2 = key.rfind('|');
+      const std::string scene = key.substr(0, bar), solver = key.substr(bar2 + 1);
+      if (solver != run.solver || scene == run.scene || std::stoi(key.substr(bar + 1, bar2 - bar - 1)) != run.level)
+        continue;
+      if (const double t0 = seconds(scene, solver, run.level - 1); t0 > 0) growth = t / t0;
+    }
+    return below * growth;
+  }
+  double sum = 0;
+  int n = 0;
+  for (const auto& [key, t] : finished)
+    if (std::stoi(key.substr(key.find('|') + 1)) == run.level) sum += t, ++n;
+  return n ? sum / n : 0;
+}
+
+std::string time_left(const std::vector<Run>& runs, size_t current, double elapsed,
+                      const std::map<std::string, double>& finished) {
+  double left = 0;
+  int unknown = 0;
+  for (size_t k = current; k < runs.size(); ++k) {
+    if (finished.count(runs[k].key())) continue;
+    const double t = estimate_seconds(runs[k], finished);
+    if (t <= 0) ++unknown;
+    left += k == current ? std::max(t - elapsed, 0.0) : t;
+  }
+  std::string text = fmt::format("about {:.0f} min left", left / 60);
+  if (unknown) text += fmt::format(" + {} run{} not yet estimable", unknown, unknown > 1 ? "s" : "");
+  return text;
 }
 
 }  // namespace
@@ -153,9 +199,21 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
   if (ec) throw Error(fmt::format("cannot create '{}': {}", out, ec.message()));
   const std::string runs_csv = out + "/runs.csv";
   std::set<std::string> done;
+  std::map<std::string, double> finished_seconds;  // run key -> wall time (for the time-left estimate)
   if (fs::exists(runs_csv)) {
     if (!o.resume) throw Error(fmt::format("'{}' exists: pass --resume to continue that sweep or choose another --out", runs_csv));
-    for (const auto& row : read_csv(runs_csv).rows) done.insert(fmt::format("{}|{}|{}", row.at("scene"), row.at("level"), row.at("solver")));
+    const CsvTable previous = read_csv(runs_csv);
+    std::string columns;
+    for (const auto& c : previous.columns) columns += (columns.empty() ? "" : ",") + c;
+    if (columns != kRunColumns)
+      throw Error(fmt::format("'{}' has other columns than this stiction writes (an older version's sweep): start a "
+                              "new sweep in another --out",
+                              runs_csv));
+    for (const auto& row : previous.rows) {
+      const std::string key = fmt::format("{}|{}|{}", row.at("scene"), row.at("level"), row.at("solver"));
+      done.insert(key);
+      if (row.at("status") == "ok") finished_seconds[key] = std::strtod(row.at("wall_seconds").c_str(), nullptr);
+    }
     append_durably(runs_csv, "# resumed: " + info.command_line + " at " + info.date + ", git " + info.git_revision);
   } else {
     std::string header = format_run_info(info, "# ");
@@ -177,6 +235,7 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
   ChildLimits limits{o.time_limit_seconds, o.memory_limit_mb > 0 ? o.memory_limit_mb : 0.9 * physical_memory_mb()};
   int index = 0;
   for (const Run& run : runs) {
+    const size_t position = index;
     ++index;
     if (done.count(run.key())) {
       fmt::print(stderr, "bench [{}/{}] {} {} L{}: already in runs.csv, skipped\n", index, runs.size(), run.scene,
@@ -201,13 +260,14 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
     const ChildResult child = run_child(argv, run_dir + "/stdout.txt", run_dir + "/stderr.txt", limits, [&](double t) {
       const int step = count_data_lines(run_dir + "/steps.csv");
       if (step != last_step || t - last_print > 30) {
-        fmt::print(stderr, "bench [{}/{}] {} {} L{}: {} load steps done, {:.0f} s\n", index, runs.size(), run.scene,
-                   run.solver, run.level, step, t);
+        fmt::print(stderr, "bench [{}/{}] {} {} L{}: {} load steps done, {:.0f} s; {}\n", index, runs.size(),
+                   run.scene, run.solver, run.level, step, t, time_left(runs, position, t, finished_seconds));
         last_step = step;
         last_print = t;
       }
     });
     write_rows(out, run, child, run_dir);
+    if (status_of(child, fs::exists(run_dir + "/metrics.toml")) == "ok") finished_seconds[run.key()] = child.wall_seconds;
     fmt::print(stderr, "bench [{}/{}] {} {} L{}: {} in {:.1f} s, peak {:.0f} MB\n", index, runs.size(), run.scene,
                run.solver, run.level, status_of(child, fs::exists(run_dir + "/metrics.toml")), child.wall_seconds,
                child.peak_rss_mb);

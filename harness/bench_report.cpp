@@ -10,6 +10,8 @@
 #include "common/error.hpp"
 #include "csv_table.hpp"
 #include "ksp_solver.hpp"
+#include "paper_tables.hpp"
+#include "scaling_plots.hpp"
 
 namespace stiction::harness {
 
@@ -48,7 +50,7 @@ void write_bench_report(const std::string& out_dir) {
   for (const auto& c : runs.comments) md += "- " + c + "\n";
   md += "\nRaw data: `runs.csv` (one row per run), `steps.csv` (one row per linear solve), `runs/<run>/` (the "
         "backend's PETSc view in `solver.txt`, per-step CSV, stderr). Rebuild this page with `stiction report "
-        "<dir>`.\n\nColumns: total s = wall time of the run's process; s / linear solve = (set-up + Krylov solve) "
+        "<dir>`.\n\nColumns: unknowns = the Newton system's (displacement, pressure and multipliers); total s = wall time of the run's process; s / linear solve = (set-up + Krylov solve) "
         "averaged over all linear solves; peak MB = the run's peak resident memory (its own process); Krylov / "
         "solve = Krylov iterations per Newton step. Ratios are lu-mumps / backend on the same scene and level: above "
         "1 the backend is faster or leaner. \"—\": the run produced no figure (see status).\n";
@@ -59,6 +61,7 @@ void write_bench_report(const std::string& out_dir) {
     if (std::find(scenes.begin(), scenes.end(), r.at("scene")) == scenes.end()) scenes.push_back(r.at("scene"));
     solvers_seen.insert(r.at("solver"));
   }
+  md += paper_tables_section(runs, out_dir);
   for (const auto& scene : scenes) {
     md += fmt::format("\n## {}\n\n| level | solver | status | unknowns | total s | s / linear solve | peak MB | Newton its "
                       "| linear solves | Krylov / solve | time/solve ratio | memory ratio |\n"
@@ -75,12 +78,13 @@ void write_bench_report(const std::string& out_dir) {
       const bool ok = finished(r);
       md += fmt::format("| {} | {} | {} | {:.0f} | {} | {} | {} | {} | {} | {} | {} | {} |\n", r.at("level"), r.at("solver"),
                         r.at("status") == "ok" ? "ok" : r.at("status") + (r.at("detail").empty() ? "" : ": " + r.at("detail")),
-                        number(r, "unknowns"), cell(r, "wall_seconds", "{:.1f}"), cell(r, "seconds_per_linear_solve", "{:.3f}"),
+                        number(r, "unknowns") + number(r, "multipliers"), cell(r, "wall_seconds", "{:.1f}"), cell(r, "seconds_per_linear_solve", "{:.3f}"),
                         ok ? fmt::format("{:.0f}", number(r, "peak_rss_mb")) : "—", cell(r, "newton_iterations", "{:.0f}"),
                         cell(r, "linear_solves", "{:.0f}"), cell(r, "krylov_per_linear_solve", "{:.1f}"),
                         ok && ref ? ratio(number(*ref, "seconds_per_linear_solve"), number(r, "seconds_per_linear_solve")) : "—",
                         ok && ref ? ratio(number(*ref, "peak_rss_mb"), number(r, "peak_rss_mb")) : "—");
     }
+    md += scaling_section(runs, scene, out_dir);
   }
 
   // Growth of Krylov iterations per Newton step with the mesh level (iterative backends).

@@ -23,8 +23,15 @@ std::vector<std::string> split(const std::string& line) {
 }  // namespace
 
 CsvTable read_csv(const std::string& path) {
-  CsvTable t;
   std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_csv(text.str());
+}
+
+CsvTable parse_csv(const std::string& text) {
+  CsvTable t;
+  std::istringstream in(text);
   std::string line;
   while (std::getline(in, line)) {
     if (line.empty()) continue;

@@ -14,6 +14,7 @@ struct CsvTable {
 };
 
 CsvTable read_csv(const std::string& path);  // empty table if the file does not exist
+CsvTable parse_csv(const std::string& text);
 std::string csv_field(std::string text);     // commas and newlines replaced
 
 // Appends one line and forces it to disk (fsync), so a killed sweep loses no finished row.

@@ -67,6 +67,8 @@ void write_metrics(const std::string& path, const scene::Scene& scene, const Run
       solve_rows.push_back(std::move(row));
     }
   }
+  int64_t multipliers = 0;
+  for (const auto& c : scene.contacts) multipliers += c->n_multipliers();
   const auto [l0, l1] = space.linear_block();
   const auto [q0, q1] = space.quadratic_block();
   toml::table run{{"scene", scene.name},
@@ -76,6 +78,10 @@ void write_metrics(const std::string& path, const scene::Scene& scene, const Run
                   {"unknowns", space.n_dofs()},
                   {"unknowns_u_l", l1 - l0},
                   {"unknowns_u_q", q1 - q0},
+                  {"unknowns_p", space.n_pressure_dofs()},
+                  {"multipliers", multipliers},
+                  {"vertices", scene.mesh.n_vertices()},
+                  {"cells", scene.mesh.n_cells()},
                   {"converged", summary.converged},
                   {"reason", summary.reason},
                   {"detail", summary.detail},

@@ -2,7 +2,8 @@
 // What one `stiction solve` run measured, written as TOML (--metrics FILE) so the sweep
 // harness can run every (scene, solver, level) in a child process and read the results.
 //
-// [run]            scene, level, solver, basis, unknowns (total, u_l, u_q), converged,
+// [run]            scene, level, solver, basis, unknowns (total: u and p; u_l, u_q, p),
+//                  multipliers, vertices, cells, converged,
 //                  reason, detail, load_steps, load_steps_completed, newton_iterations,
 //                  linear_solves, krylov_iterations, wall_seconds, assembly_seconds,
 //                  setup_seconds, solve_seconds, peak_rss_mb, backend_options

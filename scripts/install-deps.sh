@@ -19,6 +19,8 @@ packages=(
   libboost-dev
   nlohmann-json3-dev        # record/replay metadata
   zlib1g-dev                # zlib: compressed binary VTU output
+  gnuplot-nox               # report plots (SVG), drawn by `stiction report` and the report scripts
+  python3-matplotlib        # headless PNG of contact states (scripts/render-contact-states.py)
 )
 
 missing=()

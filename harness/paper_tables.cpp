@@ -1,0 +1,179 @@
+#include "paper_tables.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <optional>
+
+namespace stiction::harness {
+
+const std::map<std::string, std::string>& embedded_reference();  // generated
+
+namespace {
+
+using Row = std::map<std::string, std::string>;
+
+double number(const Row& r, const std::string& key) {
+  const auto it = r.find(key);
+  if (it == r.end() || it->second.empty()) return 0;
+  return std::strtod(it->second.c_str(), nullptr);
+}
+
+bool ok(const Row& r) { return r.at("status") == "ok"; }
+
+std::string fixed(double v, int digits) { return v > 0 ? fmt::format("{:.{}f}", v, digits) : "—"; }
+
+std::string ratio(double reference, double value) {
+  return reference > 0 && value > 0 ? fmt::format("{:.2f}", reference / value) : "—";
+}
+
+// "ours / paper (+x%)"
+std::string beside(double ours, double paper) {
+  if (ours <= 0) return fmt::format("— / {:.0f}", paper);
+  return fmt::format("{:.0f} / {:.0f} ({:+.1f}%)", ours, paper, 100 * (ours / paper - 1));
+}
+
+const Row* find_run(const std::vector<Row>& rows, const std::string& scene, int level, const std::string& solver) {
+  for (const auto& r : rows)
+    if (r.at("scene") == scene && number(r, "level") == level && r.at("solver") == solver) return &r;
+  return nullptr;
+}
+
+// The last load step's force on the clamped top (x, y, z) of a finished run.
+std::optional<std::array<double, 3>> top_force(const std::string& out_dir, const Row& r) {
+  const std::string path = fmt::format("{}/runs/{}-L{}-{}/steps.csv", out_dir, r.at("scene"), r.at("level"), r.at("solver"));
+  const CsvTable steps = read_csv(path);
+  if (steps.rows.empty()) return std::nullopt;
+  const Row& last = steps.rows.back();
+  std::array<double, 3> f{};
+  for (int k = 0; k < 3; ++k) {
+    const auto it = last.find(fmt::format("reaction_block/top_{}", "xyz"[k]));
+    if (it == last.end()) return std::nullopt;
+    f[k] = std::strtod(it->second.c_str(), nullptr);
+  }
+  return f;
+}
+
+std::string mesh_table(const std::vector<Row>& runs) {
+  const CsvTable paper = parse_csv(embedded_reference().at("table1-meshes"));
+  std::string md =
+      "\n### Table 1: meshes (stiction / paper)\n\nFrom the runs of `block-strips`; levels are uniform refinements "
+      "of level 0, as the paper's.\n\n| level | vertices | tetrahedra | u unknowns | multiplier unknowns |\n"
+      "|---|---|---|---|---|\n";
+  bool any = false;
+  for (const auto& p : paper.rows) {
+    const int level = static_cast<int>(number(p, "level"));
+    const Row* ours = nullptr;
+    for (const auto& r : runs)
+      if (r.at("scene") == "block-strips" && number(r, "level") == level && number(r, "vertices") > 0) ours = &r;
+    if (!ours) continue;
+    any = true;
+    md += fmt::format("| {} | {} | {} | {} | {} |\n", level, beside(number(*ours, "vertices"), number(p, "vertices")),
+                      beside(number(*ours, "cells"), number(p, "tetrahedra")),
+                      beside(number(*ours, "unknowns_u_l") + number(*ours, "unknowns_u_q"), number(p, "u_unknowns")),
+                      beside(number(*ours, "multipliers"), number(p, "multiplier_unknowns")));
+  }
+  return any ? md : "";
+}
+
+std::string time_table(const std::vector<Row>& runs, const std::string& out_dir, int table, const std::string& scene) {
+  const CsvTable paper = parse_csv(embedded_reference().at("tables2-3-times"));
+  std::vector<int> levels;
+  for (const auto& r : runs)
+    if (r.at("scene") == scene) {
+      const int l = static_cast<int>(number(r, "level"));
+      if (std::find(levels.begin(), levels.end(), l) == levels.end()) levels.push_back(l);
+    }
+  if (levels.empty()) return "";
+  std::sort(levels.begin(), levels.end());
+  std::string md = fmt::format(
+      "\n### Table {}: `{}`\n\nRatios are lu-mumps / backend (stiction) and GlobalLU / Schur (paper): above 1 the "
+      "iterative solver is faster or leaner. Newton iterations are summed over the 8 load steps. Force: the clamped "
+      "top's reaction after the last step, relative difference to lu-mumps' (same Newton tolerance, so it should be "
+      "at that tolerance's level).\n\n| level | solver | status | total s | s / linear solve | peak MB | Newton its "
+      "| Krylov / solve | total ratio | s/solve ratio | memory ratio | force vs lu-mumps |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+      table, scene);
+  for (int level : levels) {
+    const Row* lu = find_run(runs, scene, level, "lu-mumps");
+    const auto lu_force = lu && ok(*lu) ? top_force(out_dir, *lu) : std::nullopt;
+    for (const auto& r : runs) {
+      if (r.at("scene") != scene || number(r, "level") != level) continue;
+      const bool done = ok(r);
+      const bool ref = done && lu && ok(*lu);
+      std::string force = "—";
+      if (const auto f = done ? top_force(out_dir, r) : std::nullopt; f && lu_force) {
+        double diff = 0, size = 0;
+        for (int k = 0; k < 3; ++k) diff += std::pow((*f)[k] - (*lu_force)[k], 2), size += std::pow((*lu_force)[k], 2);
+        force = size > 0 ? fmt::format("{:.1e}", std::sqrt(diff / size)) : "—";
+      }
+      std::string status = r.at("status");
+      if (!done && !r.at("detail").empty()) status += ": " + r.at("detail");
+      md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", level, r.at("solver"), status,
+                        done ? fixed(number(r, "wall_seconds"), 1) : "—",
+                        done ? fixed(number(r, "seconds_per_linear_solve"), 3) : "—",
+                        done ? fixed(number(r, "peak_rss_mb"), 0) : "—",
+                        done ? fixed(number(r, "newton_iterations"), 0) : "—",
+                        done ? fixed(number(r, "krylov_per_linear_solve"), 1) : "—",
+                        ref ? ratio(number(*lu, "wall_seconds"), number(r, "wall_seconds")) : "—",
+                        ref ? ratio(number(*lu, "seconds_per_linear_solve"), number(r, "seconds_per_linear_solve")) : "—",
+                        ref ? ratio(number(*lu, "peak_rss_mb"), number(r, "peak_rss_mb")) : "—", force);
+    }
+    const Row *schur = nullptr, *global = nullptr;
+    for (const auto& p : paper.rows)
+      if (number(p, "table") == table && number(p, "level") == level)
+        (p.at("solver") == "GlobalLU" ? global : schur) = &p;
+    for (const Row* p : {schur, global}) {
+      if (!p) continue;
+      const bool has = number(*p, "total_seconds") > 0;
+      const bool pair = has && global && number(*global, "total_seconds") > 0;
+      md += fmt::format("| {} | paper {} | {} | {} | {} | {} | {} | — | {} | {} | {} | — |\n", level, p->at("solver"),
+                        has ? "ok" : "out of memory", fixed(number(*p, "total_seconds"), 1),
+                        fixed(number(*p, "seconds_per_linear_solve"), 3), fixed(number(*p, "memory_mb"), 0),
+                        fixed(number(*p, "newton_iterations"), 0),
+                        pair ? ratio(number(*global, "total_seconds"), number(*p, "total_seconds")) : "—",
+                        pair ? ratio(number(*global, "seconds_per_linear_solve"), number(*p, "seconds_per_linear_solve"))
+                             : "—",
+                        pair ? ratio(number(*global, "memory_mb"), number(*p, "memory_mb")) : "—");
+    }
+  }
+  return md;
+}
+
+}  // namespace
+
+std::string paper_tables_section(const CsvTable& table, const std::string& out_dir) {
+  const std::vector<Row>& runs = table.rows;
+  bool any = false;
+  for (const auto& r : runs) any |= r.at("scene") == "block-strips" || r.at("scene") == "block-strips-mr";
+  if (!any) return "";
+  std::string md =
+      "\n## The paper's tables (Lacasse & Fortin, Sec. 6.3)\n\nThe paper's figures: "
+      "`reference/lacasse-fortin-block-strips/` (its README gives the source). Its hardware is not stated: compare "
+      "ratios, not seconds.\n";
+  md += mesh_table(runs);
+  md += time_table(runs, out_dir, 2, "block-strips");
+  md += time_table(runs, out_dir, 3, "block-strips-mr");
+  // Drawn by scripts/render-contact-states.py (scripts/paper-tables.sh) after the sweep.
+  std::vector<std::string> pictures;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(out_dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind("contact-states-", 0) == 0 && e.path().extension() == ".png") pictures.push_back(name);
+  }
+  std::sort(pictures.begin(), pictures.end());
+  if (!pictures.empty()) {
+    md += "\n### Contact states at the last load step (the paper's Figures 11 and 12)\n\nEvery slave node coloured "
+          "inactive / stick / slip, and the groove-wall nodes that touch; drawn from `runs/<run>/contact.csv` by "
+          "`scripts/render-contact-states.py`.\n";
+    for (const auto& p : pictures) md += fmt::format("\n![{}]({})\n", p.substr(0, p.size() - 4), p);
+  }
+  return md;
+}
+
+}  // namespace stiction::harness

@@ -1,0 +1,115 @@
+#include "scaling_plots.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+
+#include "common/error.hpp"
+
+namespace stiction::harness {
+
+namespace {
+
+double number(const std::map<std::string, std::string>& r, const char* key) {
+  const auto it = r.find(key);
+  if (it == r.end() || it->second.empty()) return 0;
+  return std::strtod(it->second.c_str(), nullptr);
+}
+
+struct Point {
+  int level;
+  double n, seconds_per_solve, peak_mb, krylov;
+};
+
+void write_file(const std::string& path, const std::string& text) {
+  std::ofstream f(path);
+  f << text;
+  if (!f) throw Error(fmt::format("cannot write '{}'", path));
+}
+
+}  // namespace
+
+double log_log_slope(const std::vector<double>& x, const std::vector<double>& y) {
+  std::vector<double> lx, ly;
+  for (size_t k = 0; k < x.size() && k < y.size(); ++k)
+    if (x[k] > 0 && y[k] > 0) lx.push_back(std::log(x[k])), ly.push_back(std::log(y[k]));
+  if (lx.size() < 2) return 0;
+  double mx = 0, my = 0;
+  for (size_t k = 0; k < lx.size(); ++k) mx += lx[k], my += ly[k];
+  mx /= lx.size(), my /= ly.size();
+  double sxy = 0, sxx = 0;
+  for (size_t k = 0; k < lx.size(); ++k) sxy += (lx[k] - mx) * (ly[k] - my), sxx += (lx[k] - mx) * (lx[k] - mx);
+  return sxx > 0 ? sxy / sxx : 0;
+}
+
+std::string scaling_section(const CsvTable& runs, const std::string& scene, const std::string& out_dir) {
+  std::map<std::string, std::map<int, Point>> by_solver;  // solver -> level -> point
+  for (const auto& r : runs.rows) {
+    if (r.at("scene") != scene || r.at("status") != "ok") continue;
+    const int level = static_cast<int>(number(r, "level"));
+    by_solver[r.at("solver")][level] = {level, number(r, "unknowns") + number(r, "multipliers"),
+                                        number(r, "seconds_per_linear_solve"), number(r, "peak_rss_mb"),
+                                        number(r, "krylov_per_linear_solve")};
+  }
+  for (auto it = by_solver.begin(); it != by_solver.end();)
+    it = it->second.size() < 2 ? by_solver.erase(it) : std::next(it);
+  if (by_solver.empty()) return "";
+
+  std::string md = fmt::format(
+      "\n### {}: growth with the mesh\n\nLeast-squares exponent p of cost ~ n^p over the levels (n: unknowns of the "
+      "Newton system, multipliers included).\n\n| solver | levels | p (s / linear solve) | p (peak memory) | Krylov / "
+      "solve per level |\n|---|---|---|---|---|\n",
+      scene);
+  std::string data, time_plot, memory_plot, krylov_plot;
+  int block = 0;
+  for (const auto& [solver, points] : by_solver) {
+    std::vector<double> n, t, m;
+    std::string krylov, levels;
+    data += fmt::format("# {}\n# n s_per_solve peak_mb level krylov_per_solve\n", solver);
+    for (const auto& [level, p] : points) {
+      n.push_back(p.n), t.push_back(p.seconds_per_solve), m.push_back(p.peak_mb);
+      krylov += fmt::format("{}L{}: {:.1f}", krylov.empty() ? "" : "; ", level, p.krylov);
+      levels += fmt::format("{}{}", levels.empty() ? "" : ", ", level);
+      data += fmt::format("{:.0f} {:.6g} {:.6g} {} {:.3f}\n", p.n, p.seconds_per_solve, p.peak_mb, level, p.krylov);
+    }
+    data += "\n\n";
+    const double pt = log_log_slope(n, t), pm = log_log_slope(n, m);
+    md += fmt::format("| {} | {} | {:.2f} | {:.2f} | {} |\n", solver, levels, pt, pm, krylov);
+    const std::string sep = block ? ", \\\n     " : "plot ";
+    time_plot += fmt::format("{}data index {} using 1:2 with linespoints pt 7 lw 2 title '{} (p = {:.2f})'", sep, block, solver, pt);
+    memory_plot += fmt::format("{}data index {} using 1:3 with linespoints pt 7 lw 2 title '{} (p = {:.2f})'", sep, block, solver, pm);
+    krylov_plot += fmt::format("{}data index {} using 4:5 with linespoints pt 7 lw 2 title '{}'", sep, block, solver);
+    ++block;
+  }
+  const std::string stem = scene + "-growth";
+  write_file(out_dir + "/" + stem + ".dat", data);
+  const std::string script = fmt::format(
+      "# Redraw with: gnuplot {0}.gp (in this directory)\n"
+      "data = '{0}.dat'\n"
+      "set terminal svg size 720,480 dynamic font 'sans,12'\n"
+      "set key left top\nset grid\n"
+      "set logscale xy\nset xlabel 'unknowns of the Newton system'\n"
+      "set output '{1}-time-per-solve.svg'\nset ylabel 's / linear solve (set-up + Krylov)'\n"
+      "set title '{1}: time per linear solve'\n{2}\n"
+      "set output '{1}-peak-memory.svg'\nset ylabel 'peak resident memory (MB)'\n"
+      "set title '{1}: peak memory'\n{3}\n"
+      "unset logscale\nset xlabel 'mesh level'\nset xtics 1\nset ylabel 'Krylov iterations per Newton step'\n"
+      "set output '{1}-krylov.svg'\nset title '{1}: Krylov iterations per Newton step'\n{4}\n",
+      stem, scene, time_plot, memory_plot, krylov_plot);
+  write_file(out_dir + "/" + stem + ".gp", script);
+  const int rc =
+      std::system(fmt::format("cd '{}' && gnuplot '{}.gp' > '{}.log' 2>&1", out_dir, stem, stem).c_str());
+  if (rc != 0)
+    return md + fmt::format("\nPlots not drawn: gnuplot failed or is missing (see `{}.log`; "
+                            "`scripts/ensure-gnuplot.sh` installs it); `{}.gp` draws them.\n",
+                            stem, stem);
+  std::remove((out_dir + "/" + stem + ".log").c_str());
+  return md + fmt::format("\n![time per linear solve]({0}-time-per-solve.svg) ![peak memory]({0}-peak-memory.svg) "
+                          "![Krylov iterations]({0}-krylov.svg)\n",
+                          scene);
+}
+
+}  // namespace stiction::harness

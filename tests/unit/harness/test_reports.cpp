@@ -1,0 +1,64 @@
+// The sweep report's derived figures: growth exponents, and the paper's tables beside a
+// sweep (ratios, mesh counts, forces against lu-mumps) from a hand-made sweep directory.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "csv_table.hpp"
+#include "paper_tables.hpp"
+#include "scaling_plots.hpp"
+
+namespace stiction::harness {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(ScalingPlots, LogLogSlopeIsThePowerLawsExponent) {
+  std::vector<double> n{1e3, 8e3, 64e3}, t;
+  for (double x : n) t.push_back(3 * std::pow(x, 1.5));
+  EXPECT_NEAR(log_log_slope(n, t), 1.5, 1e-12);
+  EXPECT_EQ(log_log_slope({1e3}, {2.0}), 0.0);                 // one point: no slope
+  EXPECT_NEAR(log_log_slope({1e3, 0.0, 8e3}, {1.0, 5.0, 8.0}), 1.0, 1e-12);  // non-positive points skipped
+}
+
+void write(const fs::path& p, const std::string& text) {
+  fs::create_directories(p.parent_path());
+  std::ofstream(p) << text;
+}
+
+// Two runs of block-strips at level 0: lu-mumps (100 s, 2 s per solve, 600 MB) and
+// schur-amg (20 s, 0.25 s, 150 MB), whose top forces differ by 1e-3 relative.
+TEST(PaperTables, RatiosMeshCountsAndForcesBesideThePapers) {
+  const fs::path dir = fs::temp_directory_path() / "stiction-paper-tables-test";
+  fs::remove_all(dir);
+  const std::string header =
+      "scene,level,solver,status,unknowns,unknowns_u_l,unknowns_u_q,unknowns_p,multipliers,vertices,cells,"
+      "newton_iterations,krylov_per_linear_solve,wall_seconds,seconds_per_linear_solve,peak_rss_mb,detail\n";
+  write(dir / "runs.csv", header +
+                              "block-strips,0,lu-mumps,ok,49482,8025,41457,0,4029,2675,8900,48,1.0,100,2.0,600,\n"
+                              "block-strips,0,schur-amg,ok,49482,8025,41457,0,4029,2675,8900,48,60.0,20,0.25,150,\n");
+  const std::string steps = "step,time,reaction_block/top_x,reaction_block/top_y,reaction_block/top_z\n";
+  write(dir / "runs/block-strips-L0-lu-mumps/steps.csv", steps + "1,1,0,0,5\n8,8,3,0,-4\n");
+  write(dir / "runs/block-strips-L0-schur-amg/steps.csv", steps + "8,8,3.003,0,-4.004\n");
+  const std::string md = paper_tables_section(read_csv((dir / "runs.csv").string()), dir.string());
+  // Table 1: ours / paper with the relative difference.
+  EXPECT_NE(md.find("| 0 | 2675 / 2654 (+0.8%) | 8900 / 9714 (-8.4%) | 49482 / 50748 (-2.5%) | 4029 / 3771 (+6.8%) |"),
+            std::string::npos)
+      << md;
+  // Table 2: lu-mumps / schur-amg ratios 5, 8, 4 and the force difference 5e-3 / 5 = 1e-3.
+  EXPECT_NE(md.find("| 0 | schur-amg | ok | 20.0 | 0.250 | 150 | 48 | 60.0 | 5.00 | 8.00 | 4.00 | 1.0e-03 |"),
+            std::string::npos)
+      << md;
+  // The paper's level-0 rows: GlobalLU / SchurMHP = 253.3 / 227.4, 2.13 / 1.25, 683.1 / 266.
+  EXPECT_NE(md.find("| 0 | paper SchurMHP | ok | 227.4 | 1.250 | 266 | 57 | — | 1.11 | 1.70 | 2.57 | — |"),
+            std::string::npos)
+      << md;
+  EXPECT_EQ(md.find("Table 3"), std::string::npos) << "no block-strips-mr run, no Table 3";
+  EXPECT_EQ(paper_tables_section(CsvTable{}, dir.string()), "");
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace stiction::harness
