@@ -4,6 +4,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -233,6 +234,8 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
       for (const auto& solver : solvers_list) runs.push_back({scene, solver, level});
   const std::string exe = self_executable();
   ChildLimits limits{o.time_limit_seconds, o.memory_limit_mb > 0 ? o.memory_limit_mb : 0.9 * physical_memory_mb()};
+  // The runs' backends read it to refuse what would not fit (lu-mumps: solvers/lu_mumps.cpp).
+  setenv("STICTION_MEMORY_LIMIT_MB", fmt::format("{:.0f}", limits.memory_mb).c_str(), 1);
   int index = 0;
   for (const Run& run : runs) {
     const size_t position = index;

@@ -88,12 +88,12 @@ void KspSolver::setup(const nonlinear::NewtonSystem& system) {
   STICTION_PETSC(KSPSetFromOptions(ksp_));
   // A failed factorisation or preconditioner set-up (out of memory, zero pivot) is a
   // result of this backend on this system, not a program error: solve() reports it.
-  setup_failure_.clear();
-  try {
-    STICTION_PETSC(KSPSetUp(ksp_));
-  } catch (const Error& e) {
-    setup_failure_ = e.what();
-  }
+  setup_failure_ = refuse_setup(system);
+  if (setup_failure_.empty()) try {
+      STICTION_PETSC(KSPSetUp(ksp_));
+    } catch (const Error& e) {
+      setup_failure_ = e.what();
+    }
   if (capture) setup_output_ = capture->text();
   setup_seconds_ = seconds_since(t0);
   setup_extra_.clear();

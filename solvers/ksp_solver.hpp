@@ -35,6 +35,9 @@ protected:
   const std::string& setup_output() const { return setup_output_; }
   // Hook to configure the KSP/PC from the system (field splits, ...) before KSPSetUp.
   virtual void configure(const nonlinear::NewtonSystem& system) {}
+  // Before KSPSetUp: why this system must not be set up (it would not fit in memory, ...),
+  // or empty. A reason is reported by solve() as a failed set-up.
+  virtual std::string refuse_setup(const nonlinear::NewtonSystem& system) { return {}; }
   KSP ksp() const { return ksp_; }
 
 private:

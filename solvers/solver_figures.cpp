@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -24,6 +25,14 @@ void add_mumps_figures(KSP ksp, const std::string& key_prefix, std::map<std::str
   if (!MatMumpsGetInfog(F, 22, &mem)) extra[key_prefix + "mumps_memory_MB"] = static_cast<double>(mem);
   if (!MatMumpsGetInfog(F, 7, &ordering)) extra[key_prefix + "mumps_ordering"] = static_cast<double>(ordering);
   if (!MatMumpsGetRinfog(F, 3, &flops)) extra[key_prefix + "mumps_factor_flops"] = flops;
+}
+
+double current_rss_mb() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmRSS:", 0) == 0) return std::strtod(line.c_str() + 6, nullptr) / 1024.0;  // kB
+  return 0;
 }
 
 std::string full_view(KSP ksp) {

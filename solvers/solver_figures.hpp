@@ -11,6 +11,8 @@ namespace stiction::solvers {
 // INFOG(22) memory effectively used (MB), INFOG(7) ordering used, RINFOG(3) flops.
 // Keys get `key_prefix` ("" or "ll_"). Does nothing for other PCs.
 void add_mumps_figures(KSP ksp, const std::string& key_prefix, std::map<std::string, double>& extra);
+// This process's resident memory now (VmRSS), in MB; 0 when /proc cannot be read.
+double current_rss_mb();
 
 // Full ASCII KSPView of a solver (PETSc's string viewer prints one line only).
 std::string full_view(KSP ksp);

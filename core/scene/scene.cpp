@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "common/error.hpp"
@@ -533,10 +534,11 @@ std::unique_ptr<nonlinear::MultiplierConstraint> make_contact(const Scene& s, co
   // The slave body gives the stiffness scale.
   const auto it = std::find(s.body_names.begin(), s.body_names.end(), slave_body);
   cs.modulus = body_material[static_cast<size_t>(it - s.body_names.begin())]->reference_modulus();
+  // make_plane names the file and pair in its own messages.
+  std::optional<contact::RigidPlane> plane;
+  if (master == "plane") plane = make_plane(t, s.mesh.dim, file, what, step_times);
   try {
-    if (master == "plane")
-      return std::make_unique<contact::RigidPlaneContact>(name, *s.space, slave.tag,
-                                                          make_plane(t, s.mesh.dim, file, what, step_times), cs);
+    if (plane) return std::make_unique<contact::RigidPlaneContact>(name, *s.space, slave.tag, *plane, cs);
     if (!t.contains("master_boundary"))
       throw Error(fmt::format("master 'surface' needs key 'master_boundary'"));
     std::string master_body = t["master_body"].value<std::string>().value_or(slave_body);

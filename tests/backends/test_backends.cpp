@@ -161,7 +161,8 @@ INSTANTIATE_TEST_SUITE_P(Backends, EveryBackend,
                                                               "hertz-cylinders-2d", "contact-patch-2d", "self-contact-2d",
                                                               "sliding-block-2d", "hertz-sphere-3d",
                                                               "hertz-spheres-3d", "ironing-2d",
-                                                              "ironing-2d-frictionless", "crossed-tubes-3d"),
+                                                              "ironing-2d-frictionless", "crossed-tubes-3d",
+                                                              "block-strips"),
                                             ::testing::ValuesIn(available_backends())),
                          [](const auto& info) {
                            std::string n = std::get<0>(info.param) + "_" + std::get<1>(info.param);

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "builtin_scenes.hpp"
 #include "csv_table.hpp"
 #include "vtu_reader.hpp"
 
@@ -393,6 +394,49 @@ TEST_F(StictionCli, RecordThenReplayWithAnotherBackend) {
                                  (dir_ / "replay.csv").string()}, dir_);
   EXPECT_EQ(rep.exit_code, 0) << rep.err;
   EXPECT_TRUE(fs::exists(dir_ / "replay.csv"));
+}
+
+// With a memory limit in the environment (as `stiction bench` sets for its runs), lu-mumps
+// compares MUMPS's estimate after analysis with what the process may still use and refuses
+// a factorisation that would not fit: a named failure with the estimate, exit 3. 50 MB is
+// less than the process holds before the first factorisation; 100 GB lets it factorise.
+TEST_F(StictionCli, LuMumpsRefusesAFactorisationBeyondTheMemoryLimit) {
+  setenv("STICTION_MEMORY_LIMIT_MB", "50", 1);
+  const CliRun refused = solve("cantilever-2d", {"--solver", "lu-mumps"});
+  setenv("STICTION_MEMORY_LIMIT_MB", "100000", 1);
+  const CliRun fits = solve("cantilever-2d", {"--solver", "lu-mumps"});
+  unsetenv("STICTION_MEMORY_LIMIT_MB");
+  expect_error(refused, 3, {"PC_SETUP_FAILED", "MUMPS estimates", "INFOG(17)", "limit 50 MB"});
+  EXPECT_EQ(fits.exit_code, 0) << fits.err;
+}
+
+// The block with strips' schedules and geometry, broken one at a time: one clear message
+// naming the file once, exit 2, before anything is solved.
+TEST_F(StictionCli, BlockStripsScheduleAndGrooveErrorsAreInputErrors) {
+  const std::string block = stiction::harness::builtin_scenes().at("block-strips");
+  struct Case {
+    std::string from, to, file;
+    std::vector<std::string> needles;
+  };
+  const std::vector<Case> cases = {
+      {"friction_table = [[0.0, 0.0], [4.0, 0.3]]", "friction_table = [[0.0, 0.0, 1.0], [4.0, 0.3]]", "mu-row.toml",
+       {"friction_table", "2 numbers"}},
+      {"[8.0, 6.0, 0.0, 1.5]]", "[8.0, 6.0, 1.5]]", "motion-row.toml", {"motion_table", "4 numbers", "one has 3"}},
+      {"{ until = 8.0, steps = 4 }", "{ until = 3.0, steps = 4 }", "phases.toml", {"phases[1]", "until > 4"}},
+      {"generator = \"grooved-block\"", "generator = \"grooved-block\"\ngrooves = 100", "grooves.toml",
+       {"100 grooves", "do not fit"}}};
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.file);
+    SceneVariant v;
+    v.text = block;
+    v.replace(c.from, c.to);
+    const CliRun run = solve_variant(v, c.file);
+    expect_error(run, 2, c.needles);
+    const auto line = run.error_lines().empty() ? std::string() : run.error_lines().front();
+    size_t mentions = 0;
+    for (auto at = line.find(c.file); at != std::string::npos; at = line.find(c.file, at + 1)) ++mentions;
+    EXPECT_EQ(mentions, 1u) << line;
+  }
 }
 
 TEST_F(StictionCli, FailedFactorisationIsANamedNumericalFailure) {
