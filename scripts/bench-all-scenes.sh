@@ -17,13 +17,7 @@ out=reports/latest
 levels=${BENCH_LEVELS:-0,1}
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
 
-resume=()
-if [ "${BENCH_RESUME:-0}" = 1 ]; then
-  resume=(--resume)
-else
-  rm -rf "$out"
-fi
-mkdir -p "$out"
+source "$(dirname "$0")/prepare-sweep-dir.sh"
 
 scenes=$("$build/stiction" scenes | awk '{ print $1 }' |
   grep -vxF -e ironing-2d -e ironing-2d-frictionless -e crossed-tubes-3d -e block-strips -e block-strips-mr |

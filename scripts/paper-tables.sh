@@ -16,13 +16,7 @@ out=${BENCH_OUT:-reports/paper-tables}
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
 source "$(dirname "$0")/ensure-gnuplot.sh"
 
-resume=()
-if [ "${BENCH_RESUME:-0}" = 1 ]; then
-  resume=(--resume)
-else
-  rm -rf "$out"
-fi
-mkdir -p "$out"
+source "$(dirname "$0")/prepare-sweep-dir.sh"
 solvers=()
 [ -n "${BENCH_SOLVERS:-}" ] && solvers=(--solvers "$BENCH_SOLVERS")
 "$build/stiction" bench --scenes block-strips,block-strips-mr --levels "${BENCH_LEVELS:-0,1}" "${solvers[@]}" \
