@@ -19,16 +19,6 @@ namespace {
 
 using Row = std::map<std::string, std::string>;
 
-double number(const Row& r, const char* key) {
-  auto it = r.find(key);
-  if (it == r.end() || it->second.empty()) return 0;
-  try {
-    return std::stod(it->second);
-  } catch (...) {
-    return 0;
-  }
-}
-
 bool finished(const Row& r) { return r.at("status") == "ok"; }
 
 // "—" for a run that produced no number, as in the paper's tables.

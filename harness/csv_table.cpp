@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -49,6 +50,12 @@ CsvTable parse_csv(const std::string& text) {
     t.rows.push_back(std::move(row));
   }
   return t;
+}
+
+double number(const std::map<std::string, std::string>& row, const std::string& key) {
+  const auto it = row.find(key);
+  if (it == row.end() || it->second.empty()) return 0;
+  return std::strtod(it->second.c_str(), nullptr);
 }
 
 std::string csv_field(std::string text) {

@@ -15,6 +15,8 @@ struct CsvTable {
 
 CsvTable read_csv(const std::string& path);  // empty table if the file does not exist
 CsvTable parse_csv(const std::string& text);
+// A row's field as a number: 0 when it is missing, empty or not a number.
+double number(const std::map<std::string, std::string>& row, const std::string& key);
 std::string csv_field(std::string text);     // commas and newlines replaced
 
 // Appends one line and forces it to disk (fsync), so a killed sweep loses no finished row.

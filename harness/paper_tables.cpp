@@ -18,12 +18,6 @@ namespace {
 
 using Row = std::map<std::string, std::string>;
 
-double number(const Row& r, const std::string& key) {
-  const auto it = r.find(key);
-  if (it == r.end() || it->second.empty()) return 0;
-  return std::strtod(it->second.c_str(), nullptr);
-}
-
 bool ok(const Row& r) { return r.at("status") == "ok"; }
 
 std::string fixed(double v, int digits) { return v > 0 ? fmt::format("{:.{}f}", v, digits) : "—"; }

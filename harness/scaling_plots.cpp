@@ -13,12 +13,6 @@ namespace stiction::harness {
 
 namespace {
 
-double number(const std::map<std::string, std::string>& r, const char* key) {
-  const auto it = r.find(key);
-  if (it == r.end() || it->second.empty()) return 0;
-  return std::strtod(it->second.c_str(), nullptr);
-}
-
 struct Point {
   int level;
   double n, seconds_per_solve, peak_mb, krylov;
