@@ -1,5 +1,7 @@
 #include "paper_tables.hpp"
 
+#include "memory_breakdown.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -153,6 +155,7 @@ std::string paper_tables_section(const CsvTable& table, const std::string& out_d
   md += mesh_table(runs);
   md += time_table(runs, out_dir, 2, "block-strips");
   md += time_table(runs, out_dir, 3, "block-strips-mr");
+  md += memory_breakdown_table(runs, out_dir, {"block-strips", "block-strips-mr"});
   // Drawn by scripts/render-contact-states.py (scripts/paper-tables.sh) after the sweep.
   std::vector<std::string> pictures;
   std::error_code ec;

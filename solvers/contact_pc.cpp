@@ -6,6 +6,7 @@
 #include <cstdlib>
 
 #include "common/error.hpp"
+#include "solver_figures.hpp"
 
 namespace stiction::solvers {
 
@@ -181,6 +182,15 @@ void ContactPreconditioner::setup(Mat M, IS multipliers, Mat schur_mass, Mat sch
   STICTION_PETSC(MatCreateVecs(M, work_.out(), work2_.out()));
   STICTION_PETSC(MatCreateVecs(D_, work_l_.out(), nullptr));
   STICTION_PETSC(MatCreateVecs(B1_, nullptr, work_a_.out()));
+}
+
+double ContactPreconditioner::copied_blocks_mb() const {
+  return aij_storage_mb(B1_) + aij_storage_mb(B2_) + aij_storage_mb(D_) + aij_storage_mb(S_);
+}
+
+void ContactPreconditioner::release() {
+  STICTION_PETSC(KSPReset(ksp_ss_));
+  B1_.reset(), B2_.reset(), D_.reset(), S_.reset();
 }
 
 void ContactPreconditioner::set_schur_operator(Mat S) {

@@ -76,6 +76,8 @@ public:
 
   // Replaces S~ (e.g. the exact S_g in tests); after setup().
   void set_schur_operator(Mat S);
+  void release();  // frees the blocks, S~ and its solver's set-up
+  double copied_blocks_mb() const;  // B1, B2, D and S~
   double scale() const { return scale_; }
   // The two estimates the automatic scale combines (see above), from the last setup().
   struct ScaleEstimates {

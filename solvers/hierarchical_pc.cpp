@@ -1,5 +1,8 @@
 #include "hierarchical_pc.hpp"
 
+#include "block_view.hpp"
+#include "solver_figures.hpp"
+
 #include <vector>
 
 namespace stiction::solvers {
@@ -46,7 +49,7 @@ PetscErrorCode shell_apply(PC pc, Vec r, Vec x) {
 
 }  // namespace
 
-HierarchicalPreconditioner::HierarchicalPreconditioner(MPI_Comm comm, const std::string& prefix) {
+HierarchicalPreconditioner::HierarchicalPreconditioner(MPI_Comm comm, const std::string& prefix) : prefix_(prefix) {
   STICTION_PETSC(KSPCreate(comm, ksp_ll_.out()));
   STICTION_PETSC(KSPSetOptionsPrefix(ksp_ll_, (prefix + "ll_").c_str()));
   STICTION_PETSC(KSPCreate(comm, ksp_qq_.out()));
@@ -58,24 +61,36 @@ void HierarchicalPreconditioner::setup(Mat A, IS linear, IS quadratic, MatNullSp
   STICTION_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(quadratic)));
   *is_l_.out() = linear;
   *is_q_.out() = quadratic;
-  // Reuse the sub-matrices' storage while the pattern is unchanged (every Newton step
-  // without contact; a contact system's pattern moves with the projections).
-  const MatReuse reuse = A_ll_ && pattern_ == pattern_key(A) ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX;
+  // The qq solver's options first: whether its preconditioner can work on a view of A_qq.
+  STICTION_PETSC(KSPSetFromOptions(ksp_qq_));
+  PC pc_qq;
+  PCType qq_type;
+  STICTION_PETSC(KSPGetPC(ksp_qq_, &pc_qq));
+  STICTION_PETSC(PCGetType(pc_qq, &qq_type));
+  PetscBool seq;
+  STICTION_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(A), MATSEQAIJ, &seq));
+  const IndexRange l = contiguous_range(linear), q = contiguous_range(quadratic);
+  const bool views = seq && l.size >= 0 && q.size >= 0 && !block_copies_requested(prefix_);
+  // Copies are reused while the pattern is unchanged (every Newton step without contact;
+  // a contact system's pattern moves with the projections); views are made afresh, cheaply.
+  const bool same_pattern = pattern_ == pattern_key(A);
   pattern_ = pattern_key(A);
-  Mat ll = A_ll_, ql = A_ql_, qq = A_qq_;
-  STICTION_PETSC(MatCreateSubMatrix(A, linear, linear, reuse, &ll));
-  STICTION_PETSC(MatCreateSubMatrix(A, quadratic, linear, reuse, &ql));
-  STICTION_PETSC(MatCreateSubMatrix(A, quadratic, quadratic, reuse, &qq));
-  if (reuse == MAT_INITIAL_MATRIX) {
-    *A_ll_.out() = ll;
-    *A_ql_.out() = ql;
-    *A_qq_.out() = qq;
-  }
-  if (form_ == SchurForm::Full) {
-    Mat lq = A_lq_;
-    STICTION_PETSC(MatCreateSubMatrix(A, linear, quadratic, reuse == MAT_REUSE_MATRIX && A_lq_ ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &lq));
-    if (lq != A_lq_.get()) *A_lq_.out() = lq;
-  }
+  auto take_block = [&](PetscMat& held, IS rows, IS cols, IndexRange r, IndexRange c, bool view) {
+    if (view) {
+      *held.out() = block_view(A, r, c);
+      return;
+    }
+    PetscBool is_shell = PETSC_FALSE;
+    if (held) STICTION_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(held.get()), MATSHELL, &is_shell));
+    const bool reuse = held && same_pattern && !is_shell;
+    Mat m = reuse ? held.get() : nullptr;
+    STICTION_PETSC(MatCreateSubMatrix(A, rows, cols, reuse ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &m));
+    if (!reuse) *held.out() = m;
+  };
+  take_block(A_ll_, linear, linear, l, l, false);  // AMG and LU need its entries
+  take_block(A_ql_, quadratic, linear, q, l, views);
+  take_block(A_qq_, quadratic, quadratic, q, q, views && qq_type && block_view_suffices(qq_type));
+  if (form_ == SchurForm::Full) take_block(A_lq_, linear, quadratic, l, q, views);
   STICTION_PETSC(MatSetBlockSize(A_ll_, block_size));  // hypre's nodal coarsening needs it
   if (near_null_space) {
     PetscNullSpace sub(restrict_modes(near_null_space, linear));
@@ -93,9 +108,20 @@ void HierarchicalPreconditioner::setup(Mat A, IS linear, IS quadratic, MatNullSp
   }
 }
 
+void HierarchicalPreconditioner::release() {
+  STICTION_PETSC(KSPReset(ksp_ll_));
+  STICTION_PETSC(KSPReset(ksp_qq_));
+  A_ll_.reset(), A_lq_.reset(), A_ql_.reset(), A_qq_.reset();
+  pattern_ = {};
+}
+
 void HierarchicalPreconditioner::set_quadratic_operator(Mat S) {
   STICTION_PETSC(KSPSetOperators(ksp_qq_, S, S));
   STICTION_PETSC(KSPSetUp(ksp_qq_));
+}
+
+double HierarchicalPreconditioner::copied_blocks_mb() const {
+  return aij_storage_mb(A_ll_) + aij_storage_mb(A_lq_) + aij_storage_mb(A_ql_) + aij_storage_mb(A_qq_);
 }
 
 Mat HierarchicalPreconditioner::block(int row, int col) const {

@@ -13,7 +13,8 @@
 //
 // A_ll^-1 and S~^-1 are inner KSPs with their own option prefixes (<prefix>ll_, <prefix>qq_):
 // the paper's choices are a direct solve (or one AMG V-cycle) on A_ll and one SSOR sweep
-// on A_qq.
+// on A_qq. A_ll is copied out of A (AMG and LU need its entries); A_ql, A_lq and, when the
+// qq preconditioner needs no more than SOR does, A_qq are views of A (block_view.hpp).
 #include <string>
 
 #include "common/petsc.hpp"
@@ -47,12 +48,17 @@ public:
   // Replaces the operator of the quadratic-block solver (default A_qq), e.g. by the exact
   // Schur complement in verification tests. Call after setup().
   void set_quadratic_operator(Mat S);
+  // Frees the blocks and both sub-solvers' set-ups (LinearSolver::release).
+  void release();
 
   KSP linear_solver() const { return ksp_ll_; }
   KSP quadratic_solver() const { return ksp_qq_; }
-  Mat block(int row, int col) const;  // 0 = l, 1 = q (A_lq is extracted for Full only)
+  // 0 = l, 1 = q (A_lq exists for Full only); a view (MatMult, SOR) or a copy, see above.
+  Mat block(int row, int col) const;
+  double copied_blocks_mb() const;  // storage of the blocks held as copies
 
 private:
+  std::string prefix_;
   PetscKSP ksp_ll_, ksp_qq_;
   PetscIS is_l_, is_q_;
   PetscMat A_ll_, A_lq_, A_ql_, A_qq_;

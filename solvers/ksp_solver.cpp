@@ -84,6 +84,7 @@ void KspSolver::setup(const nonlinear::NewtonSystem& system) {
   std::unique_ptr<StdoutCapture> capture;
   if (capture_setup_output()) capture = std::make_unique<StdoutCapture>();
   STICTION_PETSC(KSPSetOperators(ksp_, system.matrix, system.matrix));
+  const double heap_before = heap_in_use_mb();
   configure(system);
   STICTION_PETSC(KSPSetFromOptions(ksp_));
   // A failed factorisation or preconditioner set-up (out of memory, zero pivot) is a
@@ -97,6 +98,10 @@ void KspSolver::setup(const nonlinear::NewtonSystem& system) {
   if (capture) setup_output_ = capture->text();
   setup_seconds_ = seconds_since(t0);
   setup_extra_.clear();
+  // Where the memory goes (MB): the Newton matrix, what the set-up kept (factors, AMG
+  // hierarchies, copied blocks), and, after the solve, the Krylov space.
+  setup_extra_["memory_matrix_MB"] = aij_storage_mb(system.matrix);
+  setup_extra_["memory_setup_MB"] = heap_in_use_mb() - heap_before;
   collect_setup_figures(setup_extra_);
 }
 
@@ -114,6 +119,7 @@ nonlinear::LinearSolveStats KspSolver::solve(const nonlinear::NewtonSystem& syst
   // The Krylov tolerance is the inexact-Newton forcing term: report it with every solve.
   KSPType type;
   STICTION_PETSC(KSPGetType(ksp_, &type));
+  const double heap_before = heap_in_use_mb();
   if (std::string(type) != KSPPREONLY) {
     PetscReal rtol, abstol, dtol;
     PetscInt max_it;
@@ -124,6 +130,8 @@ nonlinear::LinearSolveStats KspSolver::solve(const nonlinear::NewtonSystem& syst
   const auto t0 = std::chrono::steady_clock::now();
   STICTION_PETSC(KSPSolve(ksp_, system.rhs, x));
   s.solve_seconds = seconds_since(t0);
+  s.extra["memory_krylov_MB"] = heap_in_use_mb() - heap_before;  // work vectors kept by the KSP
+  s.extra["memory_heap_MB"] = heap_in_use_mb();
   KSPConvergedReason reason;
   PetscInt its;
   STICTION_PETSC(KSPGetConvergedReason(ksp_, &reason));
@@ -140,6 +148,12 @@ nonlinear::LinearSolveStats KspSolver::solve(const nonlinear::NewtonSystem& syst
   s.final_residual = rnorm;
   s.converged = reason > 0 && std::isfinite(rnorm);
   return s;
+}
+
+void KspSolver::release() {
+  // KSPReset keeps the type and options; the next setup() builds everything afresh, as it
+  // would for a new matrix anyway.
+  STICTION_PETSC(KSPReset(ksp_));
 }
 
 void KspSolver::set_relative_tolerance(double rtol) {

@@ -26,6 +26,7 @@ public:
   std::string describe() const override;
   void apply_preconditioner(Vec in, Vec out) const override;
   void set_relative_tolerance(double rtol) override;
+  void release() override;
 
 protected:
   // Backend figures after set-up (factorisation memory, AMG complexity, ...);

@@ -1,12 +1,15 @@
 #include "mixed_pc.hpp"
 
+#include "block_view.hpp"
+#include "solver_figures.hpp"
+
 #include "common/error.hpp"
 
 namespace stiction::solvers {
 
 MixedPreconditioner::MixedPreconditioner(MPI_Comm comm, const std::string& prefix,
                                          const HierarchicalPreconditioner& hp)
-    : hp_(hp) {
+    : hp_(hp), prefix_(prefix) {
   STICTION_PETSC(KSPCreate(comm, ksp_pp_.out()));
   STICTION_PETSC(KSPSetOptionsPrefix(ksp_pp_, (prefix + "pp_").c_str()));
 }
@@ -22,15 +25,24 @@ void MixedPreconditioner::setup(Mat A, IS pressure, Mat pressure_mass, double al
     *is_p_.out() = pressure;
     STICTION_PETSC(ISCreateStride(PetscObjectComm(reinterpret_cast<PetscObject>(A)), first, 0, 1, is_u_.out()));
   }
-  const bool first_setup = !A_up_;
-  const MatReuse reuse = !first_setup && pattern_ == pattern_key(A) ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX;
-  pattern_ = pattern_key(A);
-  Mat up = A_up_, pu = A_pu_;
-  STICTION_PETSC(MatCreateSubMatrix(A, is_u_, is_p_, reuse, &up));
-  STICTION_PETSC(MatCreateSubMatrix(A, is_p_, is_u_, reuse, &pu));
-  if (reuse == MAT_INITIAL_MATRIX) {
-    *A_up_.out() = up;
-    *A_pu_.out() = pu;
+  const bool first_setup = !S_;
+  // The couplings are only multiplied: views of A where A is sequential AIJ, else copies.
+  PetscBool seq;
+  STICTION_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(A), MATSEQAIJ, &seq));
+  const IndexRange u{0, first}, p = contiguous_range(pressure);
+  if (seq && p.size >= 0 && !block_copies_requested(prefix_)) {
+    *A_up_.out() = block_view(A, u, p);
+    *A_pu_.out() = block_view(A, p, u);
+  } else {
+    const MatReuse reuse = A_up_ && pattern_ == pattern_key(A) ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX;
+    pattern_ = pattern_key(A);
+    Mat up = A_up_, pu = A_pu_;
+    STICTION_PETSC(MatCreateSubMatrix(A, is_u_, is_p_, reuse, &up));
+    STICTION_PETSC(MatCreateSubMatrix(A, is_p_, is_u_, reuse, &pu));
+    if (reuse == MAT_INITIAL_MATRIX) {
+      *A_up_.out() = up;
+      *A_pu_.out() = pu;
+    }
   }
   if (first_setup) {
     // S~ = alpha M_p is constant: built once.
@@ -43,6 +55,15 @@ void MixedPreconditioner::setup(Mat A, IS pressure, Mat pressure_mass, double al
     STICTION_PETSC(MatCreateVecs(S_, work_p_.out(), nullptr));
     STICTION_PETSC(MatCreateVecs(A_up_, nullptr, work_u_.out()));
   }
+}
+
+double MixedPreconditioner::copied_blocks_mb() const {
+  return aij_storage_mb(A_up_) + aij_storage_mb(A_pu_) + aij_storage_mb(S_);
+}
+
+void MixedPreconditioner::release() {
+  A_up_.reset(), A_pu_.reset();  // S~ = alpha M_p and its solver stay: they do not change
+  pattern_ = {};
 }
 
 void MixedPreconditioner::set_pressure_operator(Mat S) {

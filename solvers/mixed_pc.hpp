@@ -26,11 +26,13 @@ public:
   void set_form(SchurForm form) { form_ = form; }  // Upper (default) or Full
   // Replaces the pressure Schur approximation (e.g. the exact S_p in tests); after setup().
   void set_pressure_operator(Mat S);
+  void release();  // frees the coupling blocks
+  double copied_blocks_mb() const;  // storage of the blocks held as copies (S~ included)
   KSP pressure_solver() const { return ksp_pp_; }
-  Mat coupling(bool transpose) const { return transpose ? A_up_.get() : A_pu_.get(); }  // Bp^T : Bp
 
 private:
   const HierarchicalPreconditioner& hp_;
+  std::string prefix_;
   PetscKSP ksp_pp_;
   PetscIS is_u_, is_p_;
   PetscMat A_up_, A_pu_, S_;

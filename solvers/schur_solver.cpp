@@ -38,7 +38,17 @@ void SchurSolver::configure(const nonlinear::NewtonSystem& system) {
   use_as_shell(pc, *inner, name.c_str());
 }
 
+void SchurSolver::release() {
+  KspSolver::release();
+  hp_.release();
+  if (mhp_) mhp_->release();
+  if (contact_) contact_->release();
+}
+
 void SchurSolver::collect_setup_figures(std::map<std::string, double>& extra) const {
+  // Of memory_setup_MB: the blocks held as copies (the rest: inner factors, AMG hierarchy).
+  extra["memory_block_copies_MB"] = hp_.copied_blocks_mb() + (mhp_ ? mhp_->copied_blocks_mb() : 0.0) +
+                                    (contact_ ? contact_->copied_blocks_mb() : 0.0);
   add_mumps_figures(hp_.linear_solver(), "ll_", extra);
   const double c = parse_operator_complexity(setup_output());
   if (c > 0) extra["amg_operator_complexity"] = c;

@@ -17,6 +17,7 @@ class SchurSolver final : public KspSolver {
 public:
   SchurSolver(const std::string& name, MPI_Comm comm);
   std::string describe() const override;
+  void release() override;
   HierarchicalPreconditioner& hierarchical() { return hp_; }
   MixedPreconditioner* mixed() { return mhp_.get(); }  // null without a pressure block
   ContactPreconditioner* contact() { return contact_.get(); }  // null without contact

@@ -1,7 +1,9 @@
 #include "solver_figures.hpp"
 
+#include <malloc.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -25,6 +27,23 @@ void add_mumps_figures(KSP ksp, const std::string& key_prefix, std::map<std::str
   if (!MatMumpsGetInfog(F, 22, &mem)) extra[key_prefix + "mumps_memory_MB"] = static_cast<double>(mem);
   if (!MatMumpsGetInfog(F, 7, &ordering)) extra[key_prefix + "mumps_ordering"] = static_cast<double>(ordering);
   if (!MatMumpsGetRinfog(F, 3, &flops)) extra[key_prefix + "mumps_factor_flops"] = flops;
+}
+
+double heap_in_use_mb() {
+  const struct mallinfo2 m = mallinfo2();
+  return static_cast<double>(m.uordblks + m.hblkhd) / 1048576.0;
+}
+
+double aij_storage_mb(Mat A) {
+  PetscBool aij = PETSC_FALSE;
+  if (!A || PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(A), &aij, MATSEQAIJ, MATMPIAIJ, "") || !aij)
+    return 0;
+  MatInfo info;
+  PetscInt rows;
+  if (MatGetInfo(A, MAT_LOCAL, &info) || MatGetLocalSize(A, &rows, nullptr)) return 0;
+  // nz_allocated is 0 for a matrix over caller-built arrays (seq_aij_over): it holds nz_used.
+  const double nz = std::max(info.nz_allocated, info.nz_used);
+  return (nz * (sizeof(PetscScalar) + sizeof(PetscInt)) + (rows + 1.0) * sizeof(PetscInt)) / 1048576.0;
 }
 
 double current_rss_mb() {

@@ -13,6 +13,13 @@ namespace stiction::solvers {
 void add_mumps_figures(KSP ksp, const std::string& key_prefix, std::map<std::string, double>& extra);
 // This process's resident memory now (VmRSS), in MB; 0 when /proc cannot be read.
 double current_rss_mb();
+// Bytes the allocator has handed out and not taken back (glibc mallinfo2), in MB: what
+// PETSc, hypre, MUMPS and stiction hold on the heap now. Differences around a set-up or a
+// solve say what that step kept.
+double heap_in_use_mb();
+// Storage of an assembled AIJ matrix (values, column indices, row starts), in MB; 0 for
+// other types (shells, views).
+double aij_storage_mb(Mat A);
 
 // Full ASCII KSPView of a solver (PETSc's string viewer prints one line only).
 std::string full_view(KSP ksp);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "common/csr_matrix.hpp"
 #include "common/error.hpp"
 
 namespace stiction::fem {
@@ -52,73 +53,80 @@ StiffnessMatrix::StiffnessMatrix(MPI_Comm comm, const FieldSpace& space) : space
     for (int i = 0; i < d; ++i) nnz[static_cast<size_t>(a) * d + i] = len;
     if (a < nv && space.pressure_dof(a) >= 0) nnz[space.pressure_dof(a)] = len;
   }
-  row_start_.assign(n_rows + 1, 0);
-  for (PetscInt r = 0; r < n_rows; ++r) row_start_[r + 1] = row_start_[r] + nnz[r];
-
-  STICTION_PETSC(MatCreate(comm, A_.out()));
-  STICTION_PETSC(MatSetSizes(A_, n_rows, n_rows, n_rows, n_rows));
-  STICTION_PETSC(MatSetType(A_, MATAIJ));
-  STICTION_PETSC(MatSetBlockSize(A_, space.has_pressure() ? 1 : d));
-  STICTION_PETSC(MatSeqAIJSetPreallocation(A_, 0, nnz.data()));
-  STICTION_PETSC(MatMPIAIJSetPreallocation(A_, 0, nnz.data(), 0, nullptr));
+  auto row_start = std::make_shared<std::vector<PetscInt>>(n_rows + 1, 0);
+  for (PetscInt r = 0; r < n_rows; ++r) (*row_start)[r + 1] = (*row_start)[r] + nnz[r];
   std::vector<PetscInt>().swap(nnz);
-  // Fix the pattern by inserting explicit zeros, one node's rows at a time.
-  std::vector<PetscInt> rows;
-  std::vector<PetscScalar> zeros;
+  row_start_ = std::move(row_start);
+  comm_ = comm;
+  create_matrix();
+}
+
+void StiffnessMatrix::build_columns() {
+  // The columns of every row, written node by node in the documented layout.
+  const std::vector<PetscInt>& row_start = *row_start_;
+  const int nn = space_->n_nodes(), nv = space_->n_vertices();
+  auto columns = std::make_shared<std::vector<PetscInt>>(static_cast<size_t>(row_start.back()));
+  std::vector<PetscInt> cols;
   for (int a = 0; a < nn; ++a) {
-    const std::vector<PetscInt> cols = row_columns(a);
-    rows.clear();
-    for (int i = 0; i < d; ++i) rows.push_back(static_cast<PetscInt>(a) * d + i);
-    if (a < nv && space.pressure_dof(a) >= 0) rows.push_back(space.pressure_dof(a));
-    zeros.assign(rows.size() * cols.size(), 0.0);
-    STICTION_PETSC(MatSetValues(A_, static_cast<PetscInt>(rows.size()), rows.data(), static_cast<PetscInt>(cols.size()),
-                                cols.data(), zeros.data(), INSERT_VALUES));
+    row_columns(a, cols);
+    auto put = [&](PetscInt row) { std::copy(cols.begin(), cols.end(), columns->begin() + row_start[row]); };
+    for (int i = 0; i < dim_; ++i) put(static_cast<PetscInt>(a) * dim_ + i);
+    if (a < nv && space_->pressure_dof(a) >= 0) put(space_->pressure_dof(a));
   }
-  STICTION_PETSC(MatAssemblyBegin(A_, MAT_FINAL_ASSEMBLY));
-  STICTION_PETSC(MatAssemblyEnd(A_, MAT_FINAL_ASSEMBLY));
-  STICTION_PETSC(MatSetOption(A_, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
-  PetscBool seq = PETSC_FALSE;
-  STICTION_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(A_.get()), MATSEQAIJ, &seq));
-  direct_ = seq && layout_matches_petsc();
+  if (!layout_checked_) {
+    for (size_t r = 0; r + 1 < row_start.size(); ++r)
+      if (!std::is_sorted(columns->begin() + row_start[r], columns->begin() + row_start[r + 1]))
+        throw Error("stiffness matrix: the row layout is not in column order", ErrorKind::Internal);
+    layout_checked_ = true;
+  }
+  columns_ = std::move(columns);
+}
+
+void StiffnessMatrix::create_matrix() {
+  const PetscInt n_rows = static_cast<PetscInt>(row_start_->size()) - 1;
+  if (!columns_) build_columns();
+  values_storage_ = std::make_shared<std::vector<PetscScalar>>();
+  // Room for the constraint blocks that build_augmented_matrix merges into this array: a
+  // reservation costs address space only, until a page is written.
+  values_storage_->reserve(columns_->size() + columns_->size() / 16);
+  values_storage_->assign(columns_->size(), 0.0);
+  *A_.out() = seq_aij_over(comm_, n_rows, {row_start_, columns_, values_storage_});
+  STICTION_PETSC(MatSetBlockSize(A_, block_size()));
+}
+
+CsrArrays StiffnessMatrix::take_arrays() {
+  if (!A_) throw Error("stiffness matrix: nothing assembled to hand over", ErrorKind::Internal);
+  PetscInt references;
+  STICTION_PETSC(PetscObjectGetReference(reinterpret_cast<PetscObject>(A_.get()), &references));
+  // Another holder of the matrix would see its values change: it keeps them, we copy.
+  CsrArrays out{row_start_, columns_,
+                references > 1 ? std::make_shared<std::vector<PetscScalar>>(*values_storage_) : values_storage_};
+  A_.reset();
+  values_storage_.reset();
+  columns_.reset();  // rebuilt by the next begin_assembly: the pattern is cheap to write again
+  return out;
 }
 
 // Columns of every row of node a, in the documented layout.
-std::vector<PetscInt> StiffnessMatrix::row_columns(int a) const {
-  std::vector<PetscInt> cols;
+void StiffnessMatrix::row_columns(int a, std::vector<PetscInt>& cols) const {
+  cols.clear();
   for (int j = offsets_[a]; j < offsets_[a + 1]; ++j)
     for (int k = 0; k < dim_; ++k) cols.push_back(static_cast<PetscInt>(neighbours_[j]) * dim_ + k);
   if (mixed_[a])
     for (int j = offsets_[a]; j < offsets_[a] + vertex_degree_[a]; ++j) cols.push_back(space_->pressure_dof(neighbours_[j]));
-  return cols;
-}
-
-bool StiffnessMatrix::layout_matches_petsc() const {
-  const PetscInt* ia;
-  const PetscInt* ja;
-  PetscInt n;
-  PetscBool done;
-  if (MatGetRowIJ(A_, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done) || !done) return false;
-  bool ok = n + 1 == static_cast<PetscInt>(row_start_.size());
-  for (PetscInt r = 0; ok && r <= n; ++r) ok = ia[r] == row_start_[r];
-  MatRestoreRowIJ(A_, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done);
-  return ok;
 }
 
 void StiffnessMatrix::begin_assembly() {
-  STICTION_PETSC(MatZeroEntries(A_));
-  if (direct_) STICTION_PETSC(MatSeqAIJGetArray(A_, &values_));
+  if (!A_)
+    create_matrix();
+  else
+    STICTION_PETSC(MatZeroEntries(A_));
+  STICTION_PETSC(MatSeqAIJGetArray(A_, &values_));  // tells PETSc the values change
 }
 
 void StiffnessMatrix::add(const int* nodes, int n_nodes, int n_pressure_nodes, const double* Ke) {
   const int d = dim_, m = n_nodes * d + n_pressure_nodes;
-  if (!direct_) {
-    PetscInt idx[64];
-    for (int a = 0; a < n_nodes; ++a)
-      for (int i = 0; i < d; ++i) idx[a * d + i] = static_cast<PetscInt>(nodes[a]) * d + i;
-    for (int a = 0; a < n_pressure_nodes; ++a) idx[n_nodes * d + a] = space_->pressure_dof(nodes[a]);
-    STICTION_PETSC(MatSetValues(A_, m, idx, m, idx, Ke, ADD_VALUES));
-    return;
-  }
+  const std::vector<PetscInt>& row_start = *row_start_;
   for (int a = 0; a < n_nodes; ++a) {
     const int na = nodes[a], deg = degree(na);
     const int* nb_begin = &neighbours_[offsets_[na]];
@@ -130,7 +138,7 @@ void StiffnessMatrix::add(const int* nodes, int n_nodes, int n_pressure_nodes, c
     for (int b = 0; b < n_nodes; ++b) {
       const int pos = static_cast<int>(std::lower_bound(nb_begin, nb_begin + deg, nodes[b]) - nb_begin);
       for (int r = 0; r < n_rows; ++r) {
-        PetscScalar* dst = values_ + row_start_[global_row[r]];
+        PetscScalar* dst = values_ + row_start[global_row[r]];
         const double* src = Ke + static_cast<size_t>(element_row[r]) * m;
         for (int k = 0; k < d; ++k) dst[d * pos + k] += src[b * d + k];
         if (b < n_pressure_nodes) dst[d * deg + pos] += src[n_nodes * d + b];
@@ -140,10 +148,8 @@ void StiffnessMatrix::add(const int* nodes, int n_nodes, int n_pressure_nodes, c
 }
 
 void StiffnessMatrix::end_assembly() {
-  if (direct_) {
-    STICTION_PETSC(MatSeqAIJRestoreArray(A_, &values_));
-    values_ = nullptr;
-  }
+  STICTION_PETSC(MatSeqAIJRestoreArray(A_, &values_));
+  values_ = nullptr;
   STICTION_PETSC(MatAssemblyBegin(A_, MAT_FINAL_ASSEMBLY));
   STICTION_PETSC(MatAssemblyEnd(A_, MAT_FINAL_ASSEMBLY));
 }

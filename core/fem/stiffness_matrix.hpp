@@ -11,11 +11,16 @@
 //
 // Why not plain MatSetValues: for P2 tetrahedra an element matrix has 900+ entries and
 // PETSc searches every column of every row; here add() writes straight into the
-// sequential AIJ value array. The pattern is preallocated node by node, so no second
-// full-size copy of the column indices ever exists (peak memory stays near the matrix).
-// Any other matrix type (e.g. MPI AIJ) falls back to MatSetValues.
+// sequential AIJ value array. The pattern (row starts and columns) is built once, node by
+// node, and is the matrix's own storage (seq_aij_over), so no second copy of it exists.
+//
+// take_arrays() hands the assembled matrix over (a contact system merges its blocks into
+// its values, see build_augmented_matrix), so the tangent and the augmented matrix do not
+// both exist; the next begin_assembly() writes the pattern again and makes a fresh matrix.
+#include <memory>
 #include <vector>
 
+#include "common/csr_matrix.hpp"
 #include "common/petsc.hpp"
 #include "fem/field_space.hpp"
 
@@ -25,8 +30,8 @@ class StiffnessMatrix {
 public:
   StiffnessMatrix(MPI_Comm comm, const FieldSpace& space);
 
-  Mat mat() const { return A_; }
-  bool direct_insertion() const { return direct_; }
+  Mat mat() const { return A_; }  // null after take_arrays() until the next begin_assembly()
+  PetscInt block_size() const { return space_->has_pressure() ? 1 : dim_; }
 
   // Zero the values; element matrices are added between begin and end.
   void begin_assembly();
@@ -34,20 +39,25 @@ public:
   // (node, component) for every node, then the pressure of nodes[0 .. n_pressure_nodes).
   void add(const int* nodes, int n_nodes, int n_pressure_nodes, const double* Ke);
   void end_assembly();
+  // The assembled matrix's arrays; this object drops the matrix and forgets the values.
+  CsrArrays take_arrays();
 
 private:
   int degree(int node) const { return offsets_[node + 1] - offsets_[node]; }
-  bool layout_matches_petsc() const;
-  std::vector<PetscInt> row_columns(int node) const;
+  void row_columns(int node, std::vector<PetscInt>& cols) const;
+  void build_columns();
+  void create_matrix();
 
   const FieldSpace* space_;
   int dim_;
   std::vector<int> offsets_, neighbours_;  // node graph, CSR, neighbours sorted
   std::vector<int> vertex_degree_;         // neighbours that are vertices (a prefix)
   std::vector<char> mixed_;                // node on a body with a pressure field
-  std::vector<PetscInt> row_start_;        // direct layout, per global row
+  MPI_Comm comm_;
+  std::shared_ptr<const std::vector<PetscInt>> row_start_, columns_;  // the pattern, per global row
+  bool layout_checked_ = false;
+  std::shared_ptr<std::vector<PetscScalar>> values_storage_;
   PetscMat A_;
-  bool direct_ = false;
   PetscScalar* values_ = nullptr;  // valid between begin_assembly and end_assembly
 };
 

@@ -1,6 +1,9 @@
 #include "nonlinear/augmented_matrix.hpp"
 
+#include "common/csr_matrix.hpp"
+
 #include <algorithm>
+#include <memory>
 #include <numeric>
 #include <vector>
 
@@ -12,7 +15,7 @@ namespace {
 // rows from `diagonal_from` on also get their diagonal (a zero when no entry is there).
 struct CompressedRows {
   std::vector<PetscInt> start, cols;
-  std::vector<double> values;
+  std::vector<PetscScalar> values;
 };
 
 // A counting sort by row, then a stable sort by column within each row (duplicates summed
@@ -54,73 +57,73 @@ CompressedRows compress(PetscInt rows, const SparseEntries& e, PetscInt diagonal
   return c;
 }
 
-// Appends the sorted union of two sorted (col, value) rows, summing shared columns.
-void merge_row(const PetscInt* ac, const PetscScalar* av, PetscInt an, const PetscInt* bc, const double* bv,
-               PetscInt bn, std::vector<PetscInt>& cols, std::vector<PetscScalar>& vals) {
-  PetscInt i = 0, j = 0;
+// The number of distinct columns in the union of two sorted rows.
+PetscInt union_size(const PetscInt* a, PetscInt an, const PetscInt* b, PetscInt bn) {
+  PetscInt i = 0, j = 0, count = 0;
   while (i < an || j < bn) {
-    if (j == bn || (i < an && ac[i] < bc[j])) {
-      cols.push_back(ac[i]), vals.push_back(av[i++]);
-    } else if (i == an || bc[j] < ac[i]) {
-      cols.push_back(bc[j]), vals.push_back(bv[j++]);
-    } else {
-      cols.push_back(ac[i]), vals.push_back(av[i++] + bv[j++]);
-    }
+    ++count;
+    if (j == bn || (i < an && a[i] < b[j]))
+      ++i;
+    else if (i == an || b[j] < a[i])
+      ++j;
+    else
+      ++i, ++j;
   }
-}
-
-Mat matrix_from_csr(MPI_Comm comm, PetscInt rows, const std::vector<PetscInt>& start, const std::vector<PetscInt>& cols,
-                    const std::vector<PetscScalar>& vals) {
-  PetscMPIInt size;
-  MPI_Comm_size(comm, &size);
-  // The assembly core builds sequential matrices today; the distributed version will split
-  // rows by ownership here.
-  if (size != 1) throw Error("augmented matrix: a single MPI process is supported so far", ErrorKind::Input);
-  Mat M;
-  STICTION_PETSC(MatCreate(comm, &M));
-  STICTION_PETSC(MatSetSizes(M, rows, rows, rows, rows));
-  STICTION_PETSC(MatSetType(M, MATSEQAIJ));
-  STICTION_PETSC(MatSeqAIJSetPreallocationCSR(M, start.data(), cols.data(), vals.data()));
-  return M;
+  return count;
 }
 
 }  // namespace
 
-Mat build_augmented_matrix(Mat A, PetscInt m, const SparseEntries& extra) {
-  PetscInt n;
-  STICTION_PETSC(MatGetSize(A, &n, nullptr));
-  const PetscInt total = n + m;
+Mat build_augmented_matrix(MPI_Comm comm, CsrArrays tangent, PetscInt m, const SparseEntries& extra,
+                           PetscInt block_size) {
+  const std::vector<PetscInt>& ia = *tangent.row_start;
+  const std::vector<PetscInt>& ja = *tangent.columns;
+  const PetscInt n = static_cast<PetscInt>(ia.size()) - 1, total = n + m;
   const CompressedRows e = compress(total, extra, n);
+  auto a_row = [&](PetscInt r, PetscInt& first, PetscInt& count) {
+    first = r < n ? ia[r] : 0;
+    count = r < n ? ia[r + 1] - ia[r] : 0;
+  };
 
-  const PetscInt *ia, *ja;
-  PetscInt n_rows;
-  PetscBool done;
-  STICTION_PETSC(MatGetRowIJ(A, 0, PETSC_FALSE, PETSC_FALSE, &n_rows, &ia, &ja, &done));
-  if (!done) throw Error("augmented matrix: the tangent is not an AIJ matrix", ErrorKind::Internal);
-  const PetscScalar* av;
-  STICTION_PETSC(MatSeqAIJGetArrayRead(A, &av));
-  std::vector<PetscInt> start(static_cast<size_t>(total) + 1, 0), cols;
-  std::vector<PetscScalar> vals;
-  cols.reserve(static_cast<size_t>(ia[n]) + e.cols.size());
-  vals.reserve(cols.capacity());
+  auto start = std::make_shared<std::vector<PetscInt>>(static_cast<size_t>(total) + 1, 0);
   for (PetscInt r = 0; r < total; ++r) {
-    const PetscInt a0 = r < n ? ia[r] : 0, an = r < n ? ia[r + 1] - ia[r] : 0;
-    merge_row(ja + a0, av + a0, an, e.cols.data() + e.start[r], e.values.data() + e.start[r],
-              e.start[r + 1] - e.start[r], cols, vals);
-    start[static_cast<size_t>(r) + 1] = static_cast<PetscInt>(cols.size());
+    PetscInt a0, an;
+    a_row(r, a0, an);
+    (*start)[r + 1] = (*start)[r] + union_size(ja.data() + a0, an, e.cols.data() + e.start[r], e.start[r + 1] - e.start[r]);
   }
-  STICTION_PETSC(MatSeqAIJRestoreArrayRead(A, &av));
-  STICTION_PETSC(MatRestoreRowIJ(A, 0, PETSC_FALSE, PETSC_FALSE, &n_rows, &ia, &ja, &done));
-  Mat M = matrix_from_csr(PetscObjectComm(reinterpret_cast<PetscObject>(A)), total, start, cols, vals);
-  PetscInt bs;
-  STICTION_PETSC(MatGetBlockSize(A, &bs));
-  if (bs > 1 && m % bs == 0) STICTION_PETSC(MatSetBlockSize(M, bs));
+  // The tangent's values become the augmented matrix's: merged in place from the last row
+  // back. Row r of the result starts at or after row r of the tangent and holds at least
+  // as many entries, so every write lands on a slot already read or at a higher index than
+  // any tangent value still to be read.
+  std::vector<PetscScalar>& vals = *tangent.values;
+  vals.resize(static_cast<size_t>(start->back()));
+  auto cols = std::make_shared<std::vector<PetscInt>>(static_cast<size_t>(start->back()));
+  for (PetscInt r = total - 1; r >= 0; --r) {
+    PetscInt a0, an;
+    a_row(r, a0, an);
+    PetscInt i = a0 + an - 1, j = e.start[r + 1] - 1, k = (*start)[r + 1] - 1;
+    const PetscInt i_end = a0 - 1, j_end = e.start[r] - 1;
+    for (; k >= (*start)[r]; --k) {
+      if (j == j_end || (i != i_end && ja[i] > e.cols[j])) {
+        (*cols)[k] = ja[i], vals[k] = vals[i], --i;
+      } else if (i == i_end || e.cols[j] > ja[i]) {
+        (*cols)[k] = e.cols[j], vals[k] = e.values[j], --j;
+      } else {
+        (*cols)[k] = ja[i], vals[k] = vals[i] + e.values[j], --i, --j;
+      }
+    }
+  }
+  Mat M = seq_aij_over(comm, total, {start, cols, tangent.values});
+  if (block_size > 1 && m % block_size == 0) STICTION_PETSC(MatSetBlockSize(M, block_size));
   return M;
 }
 
 Mat build_sparse_matrix(MPI_Comm comm, PetscInt m, const SparseEntries& entries) {
-  const CompressedRows e = compress(m, entries, 0);
-  return matrix_from_csr(comm, m, e.start, e.cols, std::vector<PetscScalar>(e.values.begin(), e.values.end()));
+  CompressedRows e = compress(m, entries, 0);
+  return seq_aij_over(comm, m,
+                      {std::make_shared<const std::vector<PetscInt>>(std::move(e.start)),
+                       std::make_shared<const std::vector<PetscInt>>(std::move(e.cols)),
+                       std::make_shared<std::vector<PetscScalar>>(std::move(e.values))});
 }
 
 }  // namespace stiction::nonlinear

@@ -1,8 +1,10 @@
 #pragma once
 // The augmented Newton matrix of a constrained problem: the assembled tangent A (n x n,
-// AIJ) bordered by sparse constraint blocks, as one AIJ matrix of size n + m that every
-// backend (direct, ILU, AMG, Schur) can take. Built by merging compressed rows, so its cost
-// is one pass over A's entries.
+// compressed rows) bordered by sparse constraint blocks, as one AIJ matrix of size n + m
+// that every backend (direct, ILU, AMG, Schur) can take. Built by merging compressed rows,
+// so its cost is one pass over A's entries; A's value array is reused for the result, so
+// the tangent and the augmented matrix never both exist in full.
+#include "common/csr_matrix.hpp"
 #include "common/petsc.hpp"
 #include "nonlinear/multiplier_constraint.hpp"
 
@@ -11,7 +13,10 @@ namespace stiction::nonlinear {
 // extra holds entries of rows/cols in [0, n + m): (u, lambda), (lambda, u) and
 // (lambda, lambda) blocks; entries inside A's block are added to A's values.
 // Every multiplier row gets a diagonal entry (possibly zero) so MatZeroRows and ILU find it.
-Mat build_augmented_matrix(Mat A, PetscInt m, const SparseEntries& extra);
+// tangent.values is consumed (it becomes the result's value array); the caller must hold no
+// matrix over it any more. block_size is kept when m is a multiple of it.
+Mat build_augmented_matrix(MPI_Comm comm, CsrArrays tangent, PetscInt m, const SparseEntries& extra,
+                           PetscInt block_size);
 
 // A sparse m x m matrix from entries whose indices are already in [0, m).
 Mat build_sparse_matrix(MPI_Comm comm, PetscInt m, const SparseEntries& entries);

@@ -31,6 +31,10 @@ public:
   virtual LinearSolveStats solve(const NewtonSystem& system, Vec x) = 0;
   // The solver's own description (KSPView), for reports.
   virtual std::string describe() const = 0;
+  // Drop the last set-up (factors, hierarchies, sub-blocks, Krylov vectors) and every
+  // reference to its matrix. The driver calls it before it assembles a system on a new
+  // matrix (contact), so the old set-up is not held while the new system is built.
+  virtual void release() {}
   // Relative tolerance of the next solve: the inexact-Newton forcing term. Iterative
   // backends apply it after set-up (it overrides their -ksp_rtol); direct ones ignore it.
   virtual void set_relative_tolerance(double rtol) {}

@@ -253,6 +253,12 @@ std::map<std::string, std::array<double, 3>> QuasiStaticSolver::surface_forces()
 
 void QuasiStaticSolver::assemble_system(const Residuals& r, bool lift) {
   const fem::FieldSpace& space = *problem_.space;
+  if (!lambda_.empty()) {
+    // A contact system is a new matrix every iteration: the last one and the solver's
+    // set-up on it are freed first, or they would be held while the next one is built.
+    linear_.release();
+    system_.matrix.reset();
+  }
   stiffness_->begin_assembly();
   fem::assemble_internal(space, problem_.cell_material, u_, nullptr, stiffness_.get());
   stiffness_->end_assembly();
@@ -268,7 +274,8 @@ void QuasiStaticSolver::assemble_system(const Residuals& r, bool lift) {
       problem_.constraints[k]->schur_stiffness(surface_stiffness, constraint_offset_[k]);
       problem_.constraints[k]->schur_slip_coupling(slip_coupling, constraint_offset_[k]);
     }
-    *system_.matrix.out() = build_augmented_matrix(stiffness_->mat(), static_cast<PetscInt>(lambda_.size()), blocks);
+    *system_.matrix.out() = build_augmented_matrix(system_.comm, stiffness_->take_arrays(),
+                                                   static_cast<PetscInt>(lambda_.size()), blocks, stiffness_->block_size());
     STICTION_PETSC(MatSetNearNullSpace(system_.matrix, system_.near_null_space));
     *system_.multiplier_schur_mass.out() =
         build_sparse_matrix(system_.comm, static_cast<PetscInt>(lambda_.size()), mass);

@@ -31,13 +31,15 @@ int iterations_with_exact_blocks(SchurForm mixed_form, double* residual) {
   PetscInt first;
   ISGetMinMax(is_p, &first, nullptr);
   ISCreateStride(PETSC_COMM_WORLD, first, 0, 1, &is_u);
-  Mat A, C;
+  Mat A, C, Bt, B;
   MatCreateSubMatrix(sys.matrix, is_u, is_u, MAT_INITIAL_MATRIX, &A);
   MatCreateSubMatrix(sys.matrix, is_p, is_p, MAT_INITIAL_MATRIX, &C);
-  Mat Sp = test::dense_schur_complement(A, mhp.coupling(true), mhp.coupling(false), C);
+  MatCreateSubMatrix(sys.matrix, is_u, is_p, MAT_INITIAL_MATRIX, &Bt);
+  MatCreateSubMatrix(sys.matrix, is_p, is_u, MAT_INITIAL_MATRIX, &B);
+  Mat Sp = test::dense_schur_complement(A, Bt, B, C);
   mhp.set_pressure_operator(Sp);
   const int its = test::gmres_iterations(sys, mhp, residual);
-  for (Mat* m : {&Sp, &A, &C}) MatDestroy(m);
+  for (Mat* m : {&Sp, &A, &C, &Bt, &B}) MatDestroy(m);
   ISDestroy(&is_u);
   return its;
 }

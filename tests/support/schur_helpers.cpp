@@ -67,7 +67,15 @@ ExactHierarchical::ExactHierarchical(const nonlinear::NewtonSystem& sys, const s
   set_options(prefix, {{"ll_ksp_type", "preonly"}, {"ll_pc_type", "lu"}, {"qq_ksp_type", "preonly"}, {"qq_pc_type", "lu"}});
   hp.set_form(solvers::SchurForm::Full);  // extracts A_lq, needed for S_q
   hp.setup(sys.matrix, sys.field("u_l")->is, sys.field("u_q")->is, sys.near_null_space, sys.field("u_l")->block_size);
-  schur = dense_schur_complement(hp.block(0, 0), hp.block(0, 1), hp.block(1, 0), hp.block(1, 1));
+  // The blocks as copies (HP may hold views of some, which offer products only).
+  IS l = sys.field("u_l")->is, q = sys.field("u_q")->is;
+  Mat ll, lq, ql, qq;
+  MatCreateSubMatrix(sys.matrix, l, l, MAT_INITIAL_MATRIX, &ll);
+  MatCreateSubMatrix(sys.matrix, l, q, MAT_INITIAL_MATRIX, &lq);
+  MatCreateSubMatrix(sys.matrix, q, l, MAT_INITIAL_MATRIX, &ql);
+  MatCreateSubMatrix(sys.matrix, q, q, MAT_INITIAL_MATRIX, &qq);
+  schur = dense_schur_complement(ll, lq, ql, qq);
+  for (Mat* m : {&ll, &lq, &ql, &qq}) MatDestroy(m);
   hp.set_quadratic_operator(schur);
 }
 
