@@ -36,9 +36,11 @@ std::string memory_breakdown_table(const std::vector<std::map<std::string, std::
     auto mb = [&](const char* key) { return (*largest)[key].value<double>().value_or(0.0); };
     const double heap = mb("memory_heap_MB"), matrix = mb("memory_matrix_MB"), setup = mb("memory_setup_MB"),
                  krylov = mb("memory_krylov_MB");
-    rows += fmt::format("| {} | {} | {} | {:.0f} | {:.0f} | {:.0f} | {:.0f} ({:.0f} copied blocks) | {:.0f} | {:.0f} |\n",
-                        r.at("scene"), r.at("level"), r.at("solver"), number(r, "peak_rss_mb"), heap, matrix, setup,
-                        mb("memory_block_copies_MB"), krylov, heap - matrix - setup - krylov);
+    const auto copies = (*largest)["memory_block_copies_MB"].value<double>();  // Schur backends only
+    rows += fmt::format("| {} | {} | {} | {:.0f} | {:.0f} | {:.0f} | {:.0f}{} | {:.0f} | {:.0f} |\n", r.at("scene"),
+                        r.at("level"), r.at("solver"), number(r, "peak_rss_mb"), heap, matrix, setup,
+                        copies ? fmt::format(" ({:.0f} copied blocks)", *copies) : "", krylov,
+                        heap - matrix - setup - krylov);
   }
   if (rows.empty()) return "";
   return "\n### Where the memory goes\n\nAt the linear solve that held the most heap (MB): the Newton matrix, what "

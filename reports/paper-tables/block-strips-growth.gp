@@ -8,11 +8,11 @@ set xlabel 'unknowns of the Newton system'
 set output 'block-strips-time-per-solve.svg'
 set ylabel 's / linear solve (set-up + Krylov)'
 set title 'block-strips: time per linear solve'
-plot data index 0 using 1:2 with linespoints pt 7 lw 2 title 'schur-amg (p = 1.28)'
+plot data index 0 using 1:2 with linespoints pt 7 lw 2 title 'schur-amg (p = 1.20)'
 set output 'block-strips-peak-memory.svg'
 set ylabel 'peak resident memory (MB)'
 set title 'block-strips: peak memory'
-plot data index 0 using 1:3 with linespoints pt 7 lw 2 title 'schur-amg (p = 0.90)'
+plot data index 0 using 1:3 with linespoints pt 7 lw 2 title 'schur-amg (p = 0.69)'
 unset logscale
 set xlabel 'mesh level'
 set xtics 1
