@@ -84,20 +84,23 @@ struct GroupRows {
   }
 };
 
-// Calls F<size>::run(group, args...) for every group, in order or in reverse.
+// F<group size>::run(group, args...): the kernels are compiled per group size.
+template <template <int> class F, class... Args>
+auto dispatch(const Group& grp, Args&&... args) {
+  switch (grp.size) {
+    case 1: return F<1>::run(grp, args...);
+    case 2: return F<2>::run(grp, args...);
+    case 3: return F<3>::run(grp, args...);
+    case 4: return F<4>::run(grp, args...);
+    default: return F<5>::run(grp, args...);
+  }
+}
+
+// dispatch for every group, in order or in reverse.
 template <template <int> class F, class... Args>
 void for_groups(const View& v, bool reverse, Args&&... args) {
   const size_t n = v.groups.size();
-  for (size_t q = 0; q < n; ++q) {
-    const Group& grp = v.groups[reverse ? n - 1 - q : q];
-    switch (grp.size) {
-      case 1: F<1>::run(grp, args...); break;
-      case 2: F<2>::run(grp, args...); break;
-      case 3: F<3>::run(grp, args...); break;
-      case 4: F<4>::run(grp, args...); break;
-      default: F<5>::run(grp, args...); break;
-    }
-  }
+  for (size_t q = 0; q < n; ++q) dispatch<F>(v.groups[reverse ? n - 1 - q : q], args...);
 }
 
 template <int G>
@@ -161,16 +164,19 @@ struct Sweep {
   }
 };
 
+// The inverse of a group's diagonal block into View::block_inverse; false when singular.
 template <int G>
-bool invert_block(const View& v, const Rows& r, const Group& grp) {
-  Eigen::Matrix<double, G, G> d;
-  for (int g = 0; g < G; ++g)
-    for (int h = 0; h < G; ++h) d(g, h) = r.a[r.ia[v.rows.first + grp.first + g] + grp.offset + grp.diagonal + h];
-  const double det = d.determinant();
-  if (!(std::abs(det) > 0) || !std::isfinite(det)) return false;
-  Eigen::Map<Eigen::Matrix<double, G, G, Eigen::RowMajor>>(v.block_inverse.data() + grp.inverse_at) = d.inverse();
-  return true;
-}
+struct InvertBlock {
+  static bool run(const Group& grp, const View& v, const Rows& r) {
+    Eigen::Matrix<double, G, G> d;
+    for (int g = 0; g < G; ++g)
+      for (int h = 0; h < G; ++h) d(g, h) = r.a[r.ia[v.rows.first + grp.first + g] + grp.offset + grp.diagonal + h];
+    const double det = d.determinant();
+    if (!(std::abs(det) > 0) || !std::isfinite(det)) return false;
+    Eigen::Map<Eigen::Matrix<double, G, G, Eigen::RowMajor>>(v.block_inverse.data() + grp.inverse_at) = d.inverse();
+    return true;
+  }
+};
 
 PetscErrorCode compute_pivots(const View& v, const Rows& r, PetscReal omega, PetscReal shift, bool block) {
   v.inverse_pivot.resize(static_cast<size_t>(v.rows.size));
@@ -184,14 +190,7 @@ PetscErrorCode compute_pivots(const View& v, const Rows& r, PetscReal omega, Pet
       v.inverse_pivot[grp.first + g] =
           omega / (r.a[r.ia[v.rows.first + grp.first + g] + grp.offset + grp.diagonal + g] + shift);
     if (!block) continue;
-    bool ok = false;
-    switch (grp.size) {
-      case 1: ok = invert_block<1>(v, r, grp); break;
-      case 2: ok = invert_block<2>(v, r, grp); break;
-      case 3: ok = invert_block<3>(v, r, grp); break;
-      case 4: ok = invert_block<4>(v, r, grp); break;
-      default: ok = invert_block<5>(v, r, grp); break;
-    }
+    const bool ok = dispatch<InvertBlock>(grp, v, r);
     PetscCheck(ok, PETSC_COMM_SELF, PETSC_ERR_MAT_LU_ZRPVT, "block view: the diagonal block at row %" PetscInt_FMT " is singular",
                grp.first);
   }
