@@ -175,7 +175,7 @@ private:
   std::vector<double> lambda_;                // contact multipliers (augmented unknowns n_u..)
   std::vector<PetscInt> constraint_offset_;   // first multiplier of each constraint in lambda_
   std::unique_ptr<fem::StiffnessMatrix> stiffness_;
-  NewtonSystem system_;  // its matrix is stiffness_'s
+  NewtonSystem system_;  // its matrix: stiffness_'s, or with contact the augmented matrix built from it
   std::vector<PetscInt> constrained_;         // sorted constrained dofs
   std::vector<char> is_constrained_;          // per dof
   std::vector<std::vector<int>> bc_nodes_;    // per Dirichlet condition
