@@ -108,12 +108,11 @@ std::vector<std::string> available_backends() {
   return names;
 }
 
-class EveryBackend : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
-
-TEST_P(EveryBackend, SameSolutionAsLuMumps) {
-  const auto& [scene_name, backend] = GetParam();
-  const BackendRun& ref = reference(scene_name);
-  ASSERT_TRUE(ref.failure.empty()) << ref.failure;
+// Compares one backend's run with the lu-mumps reference of the same scene; false when the
+// backend is known not to converge there or took another frictional load path, so that
+// there was no solution to compare.
+bool expect_same_solution(const std::string& scene_name, const std::string& backend, const BackendRun& ref) {
+  SCOPED_TRACE(scene_name + " / " + backend);
   const BackendRun r = run(scene_name, backend);
   // Linear solvers known to stop on a contact system must stop as a named linear-solver
   // divergence (the iteration baseline guards the status of the same runs):
@@ -126,18 +125,20 @@ TEST_P(EveryBackend, SameSolutionAsLuMumps) {
                                                                               scene_name == "ironing-2d")));
   if (known_to_stop && !r.failure.empty()) {
     EXPECT_NE(r.failure.find("DIVERGED_LINEAR_SOLVE"), std::string::npos) << r.failure;
-    GTEST_SKIP() << backend << " does not converge on this contact system: " << r.failure;
+    std::printf("%s does not converge on this contact system: %s\n", backend.c_str(), r.failure.c_str());
+    return false;
   }
-  ASSERT_TRUE(r.failure.empty()) << r.failure;
-  ASSERT_EQ(r.newton_per_step.size(), ref.newton_per_step.size());
-  // Without contact the Newton counts stay within one of the exact solve (issue #3). With
+  EXPECT_TRUE(r.failure.empty()) << r.failure;
+  EXPECT_EQ(r.newton_per_step.size(), ref.newton_per_step.size());
+  if (!r.failure.empty() || r.newton_per_step.size() != ref.newton_per_step.size()) return true;
+  // Without contact the Newton counts stay within one of the exact solve. With
   // contact, inexact Krylov solves (rtol 1e-4) change the active-set path: the counts are
   // printed, not compared (measured up to +3 per step on hertz-sphere-3d); the iteration
   // baseline guards them against rising, and the solution must still agree.
   for (size_t k = 0; k < ref.newton_per_step.size(); ++k) {
     if (ref.contact)
-      std::printf("load step %zu: %d Newton iterations (lu-mumps %d)\n", k + 1, r.newton_per_step[k],
-                  ref.newton_per_step[k]);
+      std::printf("%s load step %zu: %d Newton iterations (lu-mumps %d)\n", backend.c_str(), k + 1,
+                  r.newton_per_step[k], ref.newton_per_step[k]);
     else
       EXPECT_LE(std::abs(r.newton_per_step[k] - ref.newton_per_step[k]), 1) << "load step " << k + 1;
   }
@@ -145,27 +146,46 @@ TEST_P(EveryBackend, SameSolutionAsLuMumps) {
   // increments (a cut-back the reference did not take) slid along another path, and its
   // answer legitimately differs (schur-lu on ironing-2d: 1.7e-4 relative after a cut-back
   // at the first contact). Frictionless, elastic answers do not depend on the path.
-  if (r.frictional && r.increment_ends != ref.increment_ends)
-    GTEST_SKIP() << backend << " took other load increments than lu-mumps (" << r.increment_ends.size() << " vs "
-                 << ref.increment_ends.size() << "): with friction the answers follow different paths";
+  if (r.frictional && r.increment_ends != ref.increment_ends) {
+    std::printf("%s took other load increments than lu-mumps (%zu vs %zu): with friction the answers follow "
+                "different paths\n",
+                backend.c_str(), r.increment_ends.size(), ref.increment_ends.size());
+    return false;
+  }
   double diff = 0, norm = 0;
   for (size_t i = 0; i < ref.u.size(); ++i) {
     diff += std::pow(r.u[i] - ref.u[i], 2);
     norm += ref.u[i] * ref.u[i];
   }
   EXPECT_LT(std::sqrt(diff / norm), 1e-8);
+  return true;
+}
+
+// One test per scene, running every backend after the lu-mumps reference: CTest runs each
+// test in its own process, so a test per (scene, backend) pair would solve the reference
+// again for every backend (on block-strips, 100 s each time).
+class EveryBackend : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(EveryBackend, SameSolutionAsLuMumps) {
+  const std::string& scene_name = GetParam();
+  const BackendRun& ref = reference(scene_name);
+  ASSERT_TRUE(ref.failure.empty()) << ref.failure;
+  const auto backends = available_backends();
+  ASSERT_GE(backends.size(), 2u);
+  int compared = 0;
+  for (const auto& backend : backends)
+    if (backend != "lu-mumps") compared += expect_same_solution(scene_name, backend, ref);
+  // lu-umfpack at least (an exact factorisation, on the reference's load path) is compared.
+  EXPECT_GE(compared, 1);
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, EveryBackend,
-                         ::testing::Combine(::testing::Values("cantilever-2d", "small-block", "hertz-cylinder-2d",
-                                                              "hertz-cylinders-2d", "contact-patch-2d", "self-contact-2d",
-                                                              "sliding-block-2d", "hertz-sphere-3d",
-                                                              "hertz-spheres-3d", "ironing-2d",
-                                                              "ironing-2d-frictionless", "crossed-tubes-3d",
-                                                              "block-strips"),
-                                            ::testing::ValuesIn(available_backends())),
+                         ::testing::Values("cantilever-2d", "small-block", "hertz-cylinder-2d", "hertz-cylinders-2d",
+                                           "contact-patch-2d", "self-contact-2d", "sliding-block-2d",
+                                           "hertz-sphere-3d", "hertz-spheres-3d", "ironing-2d",
+                                           "ironing-2d-frictionless", "crossed-tubes-3d", "block-strips"),
                          [](const auto& info) {
-                           std::string n = std::get<0>(info.param) + "_" + std::get<1>(info.param);
+                           std::string n = info.param;
                            for (char& c : n)
                              if (c == '-') c = '_';
                            return n;
