@@ -15,8 +15,8 @@
 
 #include "builtin_scenes.hpp"
 #include "common/petsc.hpp"
+#include "common/process_memory.hpp"
 #include "fem/elasticity_assembly.hpp"
-#include "run_metrics.hpp"
 #include "solver_figures.hpp"
 
 namespace {
@@ -57,7 +57,7 @@ void BM_ResidualAndTangent(benchmark::State& state) {
   state.counters["cells/s"] = benchmark::Counter(s.mesh.n_cells(), benchmark::Counter::kIsIterationInvariantRate);
   state.counters["MDof/s"] = benchmark::Counter(space.n_dofs() * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["matrix_MB"] = solvers::aij_storage_mb(A);
-  state.counters["peak_RSS_MB"] = harness::peak_rss_mb();
+  state.counters["peak_RSS_MB"] = peak_resident_mb();
 }
 BENCHMARK(BM_ResidualAndTangent)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 

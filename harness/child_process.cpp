@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "common/error.hpp"
+#include "common/process_memory.hpp"
 #include "run_metrics.hpp"
 
 extern char** environ;

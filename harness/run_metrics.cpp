@@ -6,23 +6,9 @@
 #include <fstream>
 
 #include "common/error.hpp"
+#include "common/process_memory.hpp"
 
 namespace stiction::harness {
-
-double proc_status_mb(int pid, const char* field) {
-  std::ifstream status(pid ? fmt::format("/proc/{}/status", pid) : std::string("/proc/self/status"));
-  const std::string wanted = std::string(field) + ":";
-  std::string key;
-  while (status >> key) {
-    if (key == wanted) {
-      double kb = 0;
-      status >> kb;
-      return kb / 1024.0;
-    }
-    std::getline(status, key);
-  }
-  return 0;
-}
 
 void write_metrics(const std::string& path, const scene::Scene& scene, const RunSummary& summary,
                    const std::vector<nonlinear::StepResult>& steps) {
@@ -95,7 +81,7 @@ void write_metrics(const std::string& path, const scene::Scene& scene, const Run
                   {"assembly_seconds", assembly},
                   {"setup_seconds", setup},
                   {"solve_seconds", solve},
-                  {"peak_rss_mb", peak_rss_mb()},
+                  {"peak_rss_mb", peak_resident_mb()},
                   {"backend_options", summary.backend_options}};
   toml::table doc{{"run", std::move(run)}, {"step", std::move(step_rows)}, {"linear_solve", std::move(solve_rows)}};
   const std::string tmp = path + ".tmp";

@@ -32,9 +32,5 @@ struct RunSummary {
 void write_metrics(const std::string& path, const scene::Scene& scene, const RunSummary& summary,
                    const std::vector<nonlinear::StepResult>& steps);
 
-// A memory field of /proc/<pid>/status ("VmHWM", "VmRSS") in MB; pid 0 = this process.
-double proc_status_mb(int pid, const char* field);
-// Peak resident memory of this process (VmHWM) in MB.
-inline double peak_rss_mb() { return proc_status_mb(0, "VmHWM"); }
 
 }  // namespace stiction::harness

@@ -13,6 +13,7 @@
 
 #include <cstdlib>
 
+#include "common/process_memory.hpp"
 #include "ksp_solver.hpp"
 #include "solver_figures.hpp"
 
@@ -47,7 +48,7 @@ protected:
     PetscInt estimate = 0;
     STICTION_PETSC(MatMumpsGetInfog(F, 17, &estimate));
     estimate_mb_ = static_cast<double>(estimate);
-    const double in_use = current_rss_mb(), available = limit_mb - in_use;
+    const double in_use = resident_mb(), available = limit_mb - in_use;
     if (estimate_mb_ <= available) return {};
     return fmt::format("MUMPS estimates {:.0f} MB for its factorisation after analysis (INFOG(17)) and the run may "
                        "still use {:.0f} MB (limit {:.0f} MB with {:.0f} MB in use) so it does not factorise",

@@ -46,14 +46,6 @@ double aij_storage_mb(Mat A) {
   return (nz * (sizeof(PetscScalar) + sizeof(PetscInt)) + (rows + 1.0) * sizeof(PetscInt)) / 1048576.0;
 }
 
-double current_rss_mb() {
-  std::ifstream status("/proc/self/status");
-  std::string line;
-  while (std::getline(status, line))
-    if (line.rfind("VmRSS:", 0) == 0) return std::strtod(line.c_str() + 6, nullptr) / 1024.0;  // kB
-  return 0;
-}
-
 std::string full_view(KSP ksp) {
   char path[] = "/tmp/stiction-kspview-XXXXXX";
   const int fd = mkstemp(path);

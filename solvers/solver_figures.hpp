@@ -11,8 +11,6 @@ namespace stiction::solvers {
 // INFOG(22) memory effectively used (MB), INFOG(7) ordering used, RINFOG(3) flops.
 // Keys get `key_prefix` ("" or "ll_"). Does nothing for other PCs.
 void add_mumps_figures(KSP ksp, const std::string& key_prefix, std::map<std::string, double>& extra);
-// This process's resident memory now (VmRSS), in MB; 0 when /proc cannot be read.
-double current_rss_mb();
 // Bytes the allocator has handed out and not taken back (glibc mallinfo2), in MB: what
 // PETSc, hypre, MUMPS and stiction hold on the heap now. Differences around a set-up or a
 // solve say what that step kept.

@@ -16,6 +16,13 @@ double ContactSettings::friction_at(double t) const {
   return mu;
 }
 
+bool ContactSettings::frictional() const {
+  if (friction_schedule.empty()) return friction > 0;
+  for (const auto& [t_k, mu_k] : friction_schedule)
+    if (mu_k > 0) return true;
+  return false;
+}
+
 ContactPair::ContactPair(std::string name, const fem::FieldSpace& space, int slave_tag, ContactSettings settings)
     : dim_(space.dim()), slave_tag_(slave_tag), slave_(make_slave_surface(space, slave_tag, name)), settings_(settings), name_(std::move(name)) {
   if (settings_.friction < 0) throw Error(fmt::format("contact '{}': friction must be >= 0", name_));

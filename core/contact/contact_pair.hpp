@@ -25,6 +25,7 @@ struct ContactSettings {
   // is `friction` throughout.
   std::vector<std::pair<double, double>> friction_schedule;
   double friction_at(double t) const;
+  bool frictional() const;  // mu > 0 at some time of the run
   double modulus = 1;              // stiffness scale of the slave body (Young's modulus)
   double gap_tolerance = 1e-9;     // relative to the slave surface's diameter
   double force_tolerance = 1e-9;   // relative to the modulus

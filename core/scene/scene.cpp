@@ -228,7 +228,7 @@ std::unique_ptr<materials::Material> make_material(const toml::table& t, const s
     return std::make_unique<materials::MooneyRivlin>(get_float(t, S, "mu10"), get_float(t, S, "mu01"),
                                                      get_float(t, S, "kappa"), form);
   } catch (const Error& e) {
-    throw Error(fmt::format("{}: material '{}': {}", file, name, e.what()));
+    throw Error(fmt::format("{}: material '{}': {}", file, name, e.what()), e.kind());
   }
 }
 
@@ -258,7 +258,7 @@ mesh::Mesh make_tube_mesh(const toml::table& t, const std::string& file, const s
   try {
     return mesh::structured_tube(spec);
   } catch (const Error& e) {
-    throw Error(fmt::format("{}: body '{}': {}", file, body, e.what()));
+    throw Error(fmt::format("{}: body '{}': {}", file, body, e.what()), e.kind());
   }
 }
 
@@ -393,7 +393,7 @@ nonlinear::PiecewiseLinear load_function(const toml::table& t, const std::vector
     try {
       return nonlinear::PiecewiseLinear(times, rows);
     } catch (const Error& e) {
-      throw Error(fmt::format("{}: {}: {}", file, what, e.what()));
+      throw Error(fmt::format("{}: {}: {}", file, what, e.what()), e.kind());
     }
   }
   const int n_steps = static_cast<int>(step_times.size()) - 1;
@@ -546,7 +546,7 @@ std::unique_ptr<nonlinear::MultiplierConstraint> make_contact(const Scene& s, co
     return std::make_unique<contact::SurfaceContact>(name, *s.space, slave.tag, m.tag, cs,
                                                      get_float(t, S, "search_radius"));
   } catch (const Error& e) {
-    throw Error(fmt::format("{}: {}: {}", file, what, e.what()));
+    throw Error(fmt::format("{}: {}: {}", file, what, e.what()), e.kind());
   }
 }
 

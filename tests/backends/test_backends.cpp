@@ -85,7 +85,7 @@ BackendRun run(const std::string& scene_name, const std::string& backend,
   }
   for (const auto& c : s->contacts)
     if (const auto* pair = dynamic_cast<const contact::ContactPair*>(c.get()))
-      r.frictional = r.frictional || pair->settings().friction > 0 || !pair->settings().friction_schedule.empty();
+      r.frictional = r.frictional || pair->settings().frictional();
   if (!increments.empty() && !increments.back().converged()) {
     const auto& last = increments.back();
     r.failure = fmt::format("{} step {}: {} {}", backend, last.step, nonlinear::to_string(last.reason), last.detail);
