@@ -59,12 +59,15 @@ namespace {
 constexpr double kContactForcingCap = 1e-4;  // the backends' fixed Krylov rtol
 
 // Eisenstat-Walker choice 2 with PETSc's defaults and Kelley's floor (see newton.hpp).
-double next_forcing_term(double eta_prev, double r_now, double r_prev, double tolerance, bool first) {
+// r_now, r_prev: norms of this and the previous system's right side; r_free and tolerance:
+// the residual the Newton test reads and its tolerance (Kelley's floor: no solve below half
+// of what the Newton test needs).
+double next_forcing_term(double eta_prev, double r_now, double r_prev, double r_free, double tolerance, bool first) {
   constexpr double gamma = 0.9, alpha = 2, eta_first = 0.3, eta_max = 0.9, threshold = 0.1;
-  double eta = first ? eta_first : gamma * std::pow(r_now / r_prev, alpha);
+  double eta = first || !(r_prev > 0) ? eta_first : gamma * std::pow(r_now / r_prev, alpha);
   if (!first && gamma * std::pow(eta_prev, alpha) > threshold) eta = std::max(eta, gamma * std::pow(eta_prev, alpha));
   eta = std::min(eta, eta_max);
-  if (r_now > 0) eta = std::max(eta, 0.5 * tolerance / r_now);
+  if (r_free > 0) eta = std::max(eta, 0.5 * tolerance / r_free);
   return std::min(std::max(eta, 1e-12), eta_max);
 }
 
@@ -461,7 +464,11 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
 
   PetscVec du;
   STICTION_PETSC(VecDuplicate(system_.rhs, du.out()));
-  double eta = 0, r_prev = rnorm;
+  // Eisenstat-Walker reads the norm of the whole right side of each Newton system (the
+  // residual the Krylov tolerance is relative to): with contact, a load carried by the
+  // constraints (a moving ground) leaves the displacement residual at zero at the first
+  // iterate, and a ratio of displacement residuals would then stay infinite.
+  double eta = 0, rhs_prev = 0;
   for (int it = 0;; ++it) {
     const bool pending = lift_pending();
     const double tol = std::max(settings_.atol, settings_.rtol * res.reference_residual);
@@ -484,9 +491,11 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
 
     linear_.setup(system_);
     if (settings_.forcing == Forcing::EisenstatWalker) {
-      // Relative to this system's right side, which is r (the lifted system at it = 0).
-      eta = next_forcing_term(eta, rnorm, r_prev, std::max(settings_.atol, settings_.rtol * res.reference_residual),
-                              it == 0);
+      PetscReal rhs_norm;
+      STICTION_PETSC(VecNorm(system_.rhs, NORM_2, &rhs_norm));
+      eta = next_forcing_term(eta, rhs_norm, rhs_prev, rnorm,
+                              std::max(settings_.atol, settings_.rtol * res.reference_residual), it == 0);
+      rhs_prev = rhs_norm;
       // Contact: the state machine reads the gaps and multipliers of every iterate, and
       // loose solves (eta up to 0.9) make the states flip. Measured on hertz-cylinder-2d
       // level 1 with schur-amg: uncapped, 25 iterations and 953 state changes without
@@ -494,7 +503,6 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
       if (!lambda_.empty()) eta = std::min(eta, kContactForcingCap);
       linear_.set_relative_tolerance(eta);
     }
-    r_prev = rnorm;
     rec.linear = linear_.solve(system_, du);
     if (observer_) observer_(system_, du, rec.linear, step, it + 1);
     if (!rec.linear.converged) {

@@ -38,8 +38,9 @@ namespace stiction::nonlinear {
 
 // How tightly each linear system is solved (Krylov backends): Fixed keeps the backend's own
 // -ksp_rtol; EisenstatWalker is the inexact Newton of Dembo et al. that the paper relies on
-// (Sec. 5), with Eisenstat & Walker's choice 2 (gamma 0.9, alpha 2, first term 0.3, at most
-// 0.9, safeguard when gamma eta^2 > 0.1, PETSc's SNES defaults) and Kelley's floor
+// (Sec. 5), with Eisenstat & Walker's choice 2 on the norms of successive Newton right sides
+// (gamma 0.9, alpha 2, first term 0.3, at most 0.9, at most the fixed rtol with contact,
+// safeguard when gamma eta^2 > 0.1, PETSc's SNES defaults) and Kelley's floor
 // 0.5 tol / ||r|| so the last steps are not over-solved. The Newton stopping test is the
 // same either way: only the work per linear solve changes.
 enum class Forcing { Fixed, EisenstatWalker };
