@@ -15,7 +15,6 @@
 
 #include "common/error.hpp"
 #include "common/process_memory.hpp"
-#include "run_metrics.hpp"
 
 extern char** environ;
 
