@@ -105,6 +105,8 @@ int main(int argc, char** argv) {
   solve_cmd->add_flag("--no-vtu", no_vtu, "do not write VTU/PVD output");
   solve_cmd->add_option("--until", solve.until, "stop after the load step that reaches this pseudo-time")
       ->check(CLI::NonNegativeNumber);
+  solve_cmd->add_flag("--trace-contact", solve.trace_contact,
+                     "print each contact state change per Newton iteration (node, gap, multiplier, position)");
   solve_cmd->add_flag("--quick", solve.quick, "the scene's short version: stop at its load.quick_until");
   solve_cmd->add_option("--restart", solve.restart_dir,
                         "continue a failed or killed run from DIR/checkpoint.bin (output appended in DIR unless --out)");

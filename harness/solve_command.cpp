@@ -4,6 +4,7 @@
 #include <fmt/os.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -11,6 +12,7 @@
 #include "builtin_scenes.hpp"
 #include "checkpoint.hpp"
 #include "common/error.hpp"
+#include "contact/contact_state.hpp"
 #include "ksp_solver.hpp"
 #include "registry.hpp"
 #include "result_tables.hpp"
@@ -19,6 +21,22 @@
 #include "vtu_writer.hpp"
 
 namespace stiction::harness {
+namespace {
+
+// One line per changed contact state, on stderr: where the node is, its gap and multiplier,
+// so a cycling or wandering active set can be read per Newton iteration.
+void print_state_change(const nonlinear::QuasiStaticSolver::StateChange& c) {
+  const auto& n = c.after;
+  const auto state = [](char s) { return contact::to_string(static_cast<contact::NodeState>(s)); };
+  const double lt = std::hypot(n.tangential[0], n.tangential[1], n.tangential[2]);
+  fmt::print(stderr,
+             "  step {} iteration {}: {} node {} (vertex {}) {} -> {}, gap {:.3e}, lambda_n {:.3e}, |lambda_t| {:.3e}, "
+             "x ({:.6g}, {:.6g}, {:.6g})\n",
+             c.step, c.iteration, c.constraint, c.node, n.vertex, state(c.before), state(n.state), n.gap, n.normal, lt,
+             n.position[0], n.position[1], n.position[2]);
+}
+
+}  // namespace
 
 void run_solve(const SolveOptions& o, const RunInfo& info) {
   const auto t_start = std::chrono::steady_clock::now();
@@ -77,6 +95,7 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
       record_system(o.record_dir, sys, du, stats, step, iteration, context);
     });
   }
+  if (o.trace_contact) newton.set_state_change_observer(print_state_change);
   double until = o.until >= 0 ? o.until : std::numeric_limits<double>::infinity();
   if (o.quick) until = std::min(until, scene->quick_until);
   const int last_step = scene->problem.step_reaching(until);

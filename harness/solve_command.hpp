@@ -22,6 +22,7 @@ struct SolveOptions {
   std::string restart_dir;       // continue from <dir>/checkpoint.bin (output defaults to <dir>, appended)
   std::string petsc_options;     // the PETSc options given on the command line, for reports
   bool quiet = false;
+  bool trace_contact = false;    // print every contact state change per Newton iteration
 };
 
 // Throws stiction::Error (Numerical) when a load step fails, after writing what finished.

@@ -313,6 +313,21 @@ int QuasiStaticSolver::update_constraint_states(double t, const std::vector<doub
   return changes;
 }
 
+void QuasiStaticSolver::report_state_changes(int step, int iteration, double t, const std::vector<char>& before) const {
+  size_t first = 0;
+  for (size_t k = 0; k < problem_.constraints.size(); ++k) {
+    const auto* c = problem_.constraints[k];
+    const std::vector<char> now = c->states();
+    std::vector<MultiplierNode> nodes;
+    for (size_t i = 0; i < now.size(); ++i) {
+      if (now[i] == before[first + i]) continue;
+      if (nodes.empty()) nodes = c->nodes(t, u_, lambda_.data() + constraint_offset_[k]);
+      state_observer_({step, iteration, c->name(), static_cast<int>(i), before[first + i], nodes[i]});
+    }
+    first += now.size();
+  }
+}
+
 std::vector<char> QuasiStaticSolver::constraint_states() const {
   std::vector<char> all;
   for (const auto* c : problem_.constraints) {
@@ -458,6 +473,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
     if (std::all_of(states.begin(), states.end(), [](char c) { return c == MultiplierConstraint::kFreeState; })) {
       last_changes = update_constraint_states(t, std::vector<double>(lambda_.size(), 0.0));
       if (last_changes > 0) evaluate(t, u_, lambda_, r, false);
+      if (last_changes > 0 && state_observer_) report_state_changes(step, 0, t, states);
     }
     cnorm = c_reference = l2_norm(r.c);
   }
@@ -539,6 +555,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
         const std::vector<char> before = constraint_states();
         last_changes = update_constraint_states(t, dl);
         if (last_changes > 0) {
+          if (state_observer_) report_state_changes(step, it + 1, t, before);
           evaluate(t, u_, lambda_, r, false);  // the rows of the new states
           verdict = monitor.after_update(before, constraint_states(), r_free + r_c, free_norm(r.u) + l2_norm(r.c));
         }

@@ -138,6 +138,17 @@ public:
   using SystemObserver =
       std::function<void(const NewtonSystem&, Vec increment, const LinearSolveStats&, int step, int iteration)>;
   void set_system_observer(SystemObserver observer) { observer_ = std::move(observer); }
+  // Called for every multiplier node whose contact state a Newton update changed, with the
+  // node as it is after the update (`stiction solve --trace-contact` prints them).
+  struct StateChange {
+    int step = 0, iteration = 0;
+    std::string constraint;
+    int node = 0;     // multiplier node within its constraint
+    char before = 0;  // the state before the update (MultiplierNode::state's codes)
+    MultiplierNode after;
+  };
+  using StateChangeObserver = std::function<void(const StateChange&)>;
+  void set_state_change_observer(StateChangeObserver observer) { state_observer_ = std::move(observer); }
 
 private:
   struct Residuals;
@@ -147,6 +158,7 @@ private:
   fem::InternalForceStatus evaluate(double t, const std::vector<double>& u, const std::vector<double>& lambda,
                                     Residuals& r, bool elastic) const;
   int update_constraint_states(double t, const std::vector<double>& dlambda);
+  void report_state_changes(int step, int iteration, double t, const std::vector<char>& before) const;
   // Pieces of solve_increment: the increment's prescribed values (target_), the norm of the lifted
   // right side's free rows, the split of a Newton update into u (and p) and multipliers,
   // the backtracked step (u_ and lambda_ move only when it succeeds), and the norm of the
@@ -185,6 +197,7 @@ private:
   double target_time_ = 0;                    // pseudo-time of the increment being solved
   int completed_step_ = 0;                    // the last load step completed
   SystemObserver observer_;
+  StateChangeObserver state_observer_;
 };
 
 // Rigid-body modes of the space (translations, rotations about the origin) interpolated in

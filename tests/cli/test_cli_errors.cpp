@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -327,6 +328,41 @@ TEST_F(StictionCli, ContactRunWritesContactNodesAndFields) {
   const auto steps = stiction::harness::read_csv((dir_ / "out" / "steps.csv").string());
   EXPECT_TRUE(steps.rows.front().count("reaction_block/ymax_y"));
   EXPECT_TRUE(steps.rows.front().count("reaction_block/ymax:x_x")) << "the second condition on ymax";
+}
+
+TEST_F(StictionCli, TraceContactPrintsEveryStateChangeOfTheRun) {
+  // Replaying the traced transitions from "all inactive" must end at the states contact.csv
+  // holds for the last step; without the flag nothing is traced.
+  const CliRun quiet = solve("sliding-block-2d");
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err.find(" -> "), std::string::npos) << quiet.err;
+
+  const CliRun run = solve("sliding-block-2d", {"--trace-contact"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::regex line(R"(step (\d+) iteration (\d+): (\S+) node (\d+) \(vertex \d+\) (\w+) -> (\w+), gap \S+, )"
+                        R"(lambda_n \S+, \|lambda_t\| \S+, x \()");
+  std::map<std::string, std::string> traced;  // node -> state after its last traced change
+  int changes = 0;
+  std::istringstream in(run.err);
+  for (std::string text; std::getline(in, text);) {
+    std::smatch m;
+    if (!std::regex_search(text, m, line)) continue;
+    ++changes;
+    const std::string node = m[4], before = m[5], after = m[6];
+    EXPECT_EQ(traced.count(node) ? traced[node] : "inactive", before) << text;
+    EXPECT_NE(before, after) << text;
+    traced[node] = after;
+  }
+  EXPECT_GE(changes, 11) << "every slave node enters contact at least once\n" << run.err;
+  const auto nodes = stiction::harness::read_csv((dir_ / "out" / "contact.csv").string());
+  int compared = 0;
+  for (const auto& row : nodes.rows) {
+    if (row.at("step") != "3") continue;
+    const std::string node = row.at("node");
+    EXPECT_EQ(traced.count(node) ? traced[node] : "inactive", row.at("state")) << "node " << node;
+    ++compared;
+  }
+  EXPECT_EQ(compared, 11);
 }
 
 TEST_F(StictionCli, UnknownVtuFormatListsTheChoices) {
