@@ -9,7 +9,22 @@ export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 solvers=$("$build/stiction" solvers | awk '$2 == "available" && $1 != "lu-umfpack" { print $1 }' | paste -sd,)
-"$build/stiction" bench --levels 0 --quick --solvers "$solvers" --out "$tmp/sweep" >&2
+# BASELINE_JOBS sweeps side by side (default 2, one per core), the scenes dealt round-robin;
+# the counts do not depend on how the scenes are grouped.
+jobs=${BASELINE_JOBS:-2}
+mapfile -t scenes < <("$build/stiction" scenes | awk '{ print $1 }')
+pids=()
+for ((j = 0; j < jobs; ++j)); do
+  part=()
+  for ((i = j; i < ${#scenes[@]}; i += jobs)); do part+=("${scenes[i]}"); done
+  [ ${#part[@]} -gt 0 ] || continue
+  "$build/stiction" bench --levels 0 --quick --scenes "$(IFS=,; echo "${part[*]}")" --solvers "$solvers" \
+    --out "$tmp/sweep-$j" >"$tmp/sweep-$j.log" 2>&1 &
+  pids+=($!)
+done
+for j in "${!pids[@]}"; do
+  wait "${pids[j]}" || { tail -20 "$tmp/sweep-$j.log" >&2; exit 1; }
+done
 out=tests/regression/iterations.csv
 {
   echo "# Newton and total Krylov iterations per (scene, backend) at mesh level 0, guarded by"
@@ -18,9 +33,9 @@ out=tests/regression/iterations.csv
   echo "# A run that fails (e.g. boomeramg on an indefinite mixed system) is recorded with its status;"
   echo "# the test then expects the same status and compares no counts."
   echo "scene,solver,status,newton_iterations,krylov_iterations"
-  # Columns by name: runs.csv gains columns over time.
-  awk -F, '/^#/ { next } !header { for (i = 1; i <= NF; i++) col[$i] = i; header = 1; next }
+  # Columns by name (runs.csv gains columns over time), each sweep's header read from its own file.
+  awk -F, '/^#/ { next } !(FILENAME in header) { for (i = 1; i <= NF; i++) col[$i] = i; header[FILENAME] = 1; next }
            { print $col["scene"] "," $col["solver"] "," $col["status"] "," $col["newton_iterations"] "," \
-                   $col["krylov_iterations"] }' "$tmp/sweep/runs.csv"
+                   $col["krylov_iterations"] }' "$tmp"/sweep-*/runs.csv | sort -t, -k1,1 -k2,2
 } > "$out"
 echo "wrote $out" >&2
