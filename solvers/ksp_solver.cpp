@@ -11,6 +11,8 @@
 #include <memory>
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <vector>
 #include <map>
 #include <sstream>
 
@@ -68,11 +70,52 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
-KspSolver::KspSolver(std::string name, MPI_Comm comm) : name_(std::move(name)) {
-  STICTION_PETSC(KSPCreate(comm, ksp_.out()));
-  const std::string prefix = options_prefix(name_);
-  STICTION_PETSC(KSPSetOptionsPrefix(ksp_, prefix.c_str()));
-  insert_defaults(prefix, default_options(name_));
+// PETSc's default test, then the stagnation test (ksp_solver.hpp) on the residual history.
+struct KspSolver::StagnationTest {
+  void* default_context = nullptr;
+  PetscInt window = 500;
+  PetscReal margin = 3;
+  std::vector<PetscReal> history;
+  bool fired = false;
+
+  static PetscErrorCode test(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason* reason, void* context) {
+    auto* self = static_cast<StagnationTest*>(context);
+    PetscCall(KSPConvergedDefault(ksp, it, rnorm, reason, self->default_context));
+    if (it == 0) self->fired = false;
+    self->history.resize(it + 1);  // GMRES may test an iteration twice (at a restart)
+    self->history[it] = rnorm;
+    if (*reason != KSP_CONVERGED_ITERATING || self->margin <= 0 || self->window <= 0 || it < self->window) return 0;
+    PetscReal rtol, abstol, dtol;
+    PetscInt max_it;
+    PetscCall(KSPGetTolerances(ksp, &rtol, &abstol, &dtol, &max_it));
+    const PetscReal before = self->history[it - self->window];
+    const PetscReal target = std::max(rtol * self->history.front(), abstol);
+    // Iterations still needed at the window's mean rate (infinite without progress).
+    const double needed = rnorm < before ? std::log(target / rnorm) / (std::log(rnorm / before) / self->window)
+                                         : std::numeric_limits<double>::infinity();
+    if (needed > self->margin * static_cast<double>(max_it - it)) {
+      *reason = KSP_DIVERGED_ITS;
+      self->fired = true;
+    }
+    return 0;
+  }
+  static PetscErrorCode destroy(void* context) {
+    auto* self = static_cast<StagnationTest*>(context);
+    PetscCall(KSPConvergedDefaultDestroy(self->default_context));
+    delete self;
+    return 0;
+  }
+};
+
+KspSolver::KspSolver(std::string name, MPI_Comm comm) : name_(std::move(name)), comm_(comm) {
+  create_ksp();
+  insert_defaults(options_prefix(name_), default_options(name_));
+}
+
+void KspSolver::create_ksp() {
+  stagnation_ = nullptr;  // the old KSP's convergence context went with it
+  STICTION_PETSC(KSPCreate(comm_, ksp_.out()));
+  STICTION_PETSC(KSPSetOptionsPrefix(ksp_, options_prefix(name_).c_str()));
 }
 
 void KspSolver::setup(const nonlinear::NewtonSystem& system) {
@@ -87,6 +130,7 @@ void KspSolver::setup(const nonlinear::NewtonSystem& system) {
   const double heap_before = heap_in_use_mb();
   configure(system);
   STICTION_PETSC(KSPSetFromOptions(ksp_));
+  install_stagnation_test();
   // A failed factorisation or preconditioner set-up (out of memory, zero pivot) is a
   // result of this backend on this system, not a program error: solve() reports it.
   setup_failure_ = refuse_setup(system);
@@ -143,17 +187,37 @@ nonlinear::LinearSolveStats KspSolver::solve(const nonlinear::NewtonSystem& syst
   STICTION_PETSC(VecAYPX(r, -1.0, system.rhs));
   STICTION_PETSC(VecNorm(r, NORM_2, &rnorm));
   s.iterations = static_cast<int>(its);
-  s.reason = KSPConvergedReasons[reason];
+  s.reason = stagnation_ && stagnation_->fired ? "DIVERGED_STAGNATION" : KSPConvergedReasons[reason];
   s.initial_residual = bnorm;
   s.final_residual = rnorm;
   s.converged = reason > 0 && std::isfinite(rnorm);
   return s;
 }
 
+void KspSolver::install_stagnation_test() {
+  KSPType type;
+  STICTION_PETSC(KSPGetType(ksp_, &type));
+  void* current = nullptr;
+  STICTION_PETSC(KSPGetConvergenceContext(ksp_, &current));
+  if (std::string(type) == KSPPREONLY || (stagnation_ && current == stagnation_)) return;
+  auto test = std::make_unique<StagnationTest>();
+  const std::string prefix = options_prefix(name_);
+  STICTION_PETSC(PetscOptionsGetInt(nullptr, prefix.c_str(), "-ksp_stagnation_window", &test->window, nullptr));
+  STICTION_PETSC(PetscOptionsGetReal(nullptr, prefix.c_str(), "-ksp_stagnation_margin", &test->margin, nullptr));
+  STICTION_PETSC(KSPConvergedDefaultCreate(&test->default_context));
+  STICTION_PETSC(KSPSetConvergenceTest(ksp_, StagnationTest::test, test.get(), StagnationTest::destroy));
+  stagnation_ = test.release();
+}
+
 void KspSolver::release() {
   // KSPReset keeps the type and options; the next setup() builds everything afresh, as it
-  // would for a new matrix anyway.
-  STICTION_PETSC(KSPReset(ksp_));
+  // would for a new matrix anyway. After a failed set-up the KSP is replaced instead: PETSc
+  // 3.18's hypre PC, reset after a failed BoomerAMG set-up, keeps pointers to the IJ vectors
+  // it freed and frees them again when the KSP is destroyed (valgrind: invalid reads in
+  // HYPRE_IJVectorDestroy, then an abort in PetscFinalize, when a run retried an increment
+  // after boomeramg's set-up had failed on sliding-block-2d).
+  if (setup_failure_.empty()) STICTION_PETSC(KSPReset(ksp_));
+  else create_ksp();
 }
 
 void KspSolver::set_relative_tolerance(double rtol) {
@@ -168,6 +232,12 @@ void KspSolver::apply_preconditioner(Vec in, Vec out) const {
 
 std::string KspSolver::describe() const {
   std::string text = full_view(ksp_);
+  if (stagnation_)
+    text += stagnation_->margin > 0 && stagnation_->window > 0
+                ? fmt::format("stagnation test: stop when the last {} iterations' rate needs over {:g} x the "
+                              "iterations left\n",
+                              stagnation_->window, stagnation_->margin)
+                : std::string("stagnation test: off\n");
   if (!setup_output_.empty()) text += "\nSet-up statistics printed by the solver:\n" + setup_output_;
   return text;
 }

@@ -54,6 +54,11 @@ void ContactPair::begin_increment(double t_start, const std::vector<double>& u) 
   t_previous_ = t_start;
   for (int i = 0; i < slave_.n_nodes(); ++i) r_t_[i] = initial_r_t(i);
   std::fill(last_dlambda_t_.begin(), last_dlambda_t_.end(), Vec3::Zero());
+  // Settled is a property of this increment's iterates: the new load moves the multipliers
+  // again. Carried over from the last increment, it let a run's first increment after a
+  // converged one linearise the normals at once while the same increment after a restart or
+  // a cut-back (restore_state) did not, so a restarted run left the uninterrupted one's path.
+  settled_ = false;
 }
 
 double ContactPair::initial_r_t(int i) const {

@@ -17,7 +17,8 @@
 // states may change and when they cycle: active_set_monitor.hpp.
 //
 // Load increments (run): load step k goes from step_times[k-1] to step_times[k]. An increment
-// that fails (but for a failed linear solve) is retried from the last converged state over half of it, down to max_cuts
+// that fails is retried from the last converged state over half of it (a failed linear solve
+// only past the increment's first solve and once per load step), down to max_cuts
 // halvings of the step; the reduced size carries over into the next steps and doubles after
 // two converged parts at one size (never past a step's end, which every step reaches
 // exactly). Every attempt, failed or not, reaches the caller as a StepResult.
@@ -111,7 +112,8 @@ public:
   // Newton for an increment of load step `step` from the current state to pseudo-time t.
   StepResult solve_increment(int step, double t);
   // Steps first_step..last_step (-1: n_steps) with cut-backs; calls on_step after each
-  // attempt; stops at the first step that fails at max_cuts halvings (or on a failed linear solve).
+  // attempt; stops at the first step that fails at max_cuts halvings (or on a failed linear
+  // solve that may not be retried: retry_allowed).
   std::vector<StepResult> run(const std::function<void(const StepResult&)>& on_step = {}, int first_step = 1,
                               int last_step = -1);
 
@@ -158,6 +160,7 @@ private:
   fem::InternalForceStatus evaluate(double t, const std::vector<double>& u, const std::vector<double>& lambda,
                                     Residuals& r, bool elastic) const;
   int update_constraint_states(double t, const std::vector<double>& dlambda);
+  static bool retry_allowed(const StepResult& failed, bool linear_failure_retried);
   void report_state_changes(int step, int iteration, double t, const std::vector<char>& before) const;
   // Pieces of solve_increment: the increment's prescribed values (target_), the norm of the lifted
   // right side's free rows, the split of a Newton update into u (and p) and multipliers,

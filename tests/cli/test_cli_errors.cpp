@@ -309,6 +309,35 @@ TEST_F(StictionCli, RestartContinuesFromTheLastCompletedStep) {
   expect_error(solve("cantilever-2d", {"--restart", (dir_ / "nowhere").string()}), 2, {"no checkpoint", "nowhere"});
 }
 
+// With contact, a restart follows the uninterrupted run's Newton path: the same residual at
+// every iteration of the steps after the checkpoint (the contact states come from the
+// checkpoint, everything else a contact pair tracks restarts with each increment).
+TEST_F(StictionCli, RestartWithContactFollowsTheUninterruptedNewtonPath) {
+  const fs::path whole_dir = dir_ / "whole";
+  // Curved deformable contact over two steps: the normals' terms enter the Jacobian.
+  const CliRun whole = CliRun::of({"solve", "hertz-cylinders-2d", "--quiet", "--no-vtu", "--out", whole_dir.string()},
+                                  dir_);
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  const CliRun first = solve("hertz-cylinders-2d", {"--no-vtu", "--until", "0.5"});
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  const CliRun rest = solve("hertz-cylinders-2d", {"--no-vtu", "--restart", (dir_ / "out").string()});
+  ASSERT_EQ(rest.exit_code, 0) << rest.err;
+  auto last_step_rows = [](const fs::path& file) {
+    std::vector<std::map<std::string, std::string>> rows;
+    for (const auto& row : stiction::harness::read_csv(file.string()).rows)
+      if (row.at("step") == "2") rows.push_back(row);
+    return rows;
+  };
+  const auto restarted = last_step_rows(dir_ / "out" / "iterations.csv");
+  const auto straight = last_step_rows(whole_dir / "iterations.csv");
+  ASSERT_GE(straight.size(), 2u) << "the last step takes Newton iterations to compare";
+  ASSERT_EQ(restarted.size(), straight.size());
+  for (size_t i = 0; i < straight.size(); ++i) {
+    const double a = std::stod(restarted[i].at("residual")), b = std::stod(straight[i].at("residual"));
+    EXPECT_NEAR(a, b, 1e-6 * std::abs(b) + 1e-14) << "iteration " << i + 1;
+  }
+}
+
 // With contact, contact.csv holds a row per multiplier node and load step, and the VTU the
 // contact fields; two conditions on one boundary get two sets of reaction columns.
 TEST_F(StictionCli, ContactRunWritesContactNodesAndFields) {
@@ -363,6 +392,20 @@ TEST_F(StictionCli, TraceContactPrintsEveryStateChangeOfTheRun) {
     ++compared;
   }
   EXPECT_EQ(compared, 11);
+}
+
+// boomeramg's set-up fails on the contact system (hypre error 12) at the increment's second
+// solve: the increment is retried over half of it, fails the same way, and the run ends
+// with one message (PETSc's hypre PC, reset after the failed set-up, once freed its vectors
+// twice and the run aborted).
+TEST_F(StictionCli, FailedAmgSetUpRetriedOnceEndsWithOneMessage) {
+  const CliRun run = solve("sliding-block-2d", {"--solver", "boomeramg", "--quick", "--no-vtu"});
+  expect_error(run, 3, {"load step 1", "PC_SETUP_FAILED"});
+  const auto steps = stiction::harness::read_csv((dir_ / "out" / "steps.csv").string()).rows;
+  ASSERT_EQ(steps.size(), 2u) << "the whole increment, then its half";
+  EXPECT_EQ(steps[0].at("retried"), "1");
+  EXPECT_EQ(steps[1].at("cut"), "1");
+  EXPECT_EQ(steps[1].at("retried"), "0");
 }
 
 TEST_F(StictionCli, UnknownVtuFormatListsTheChoices) {

@@ -327,18 +327,44 @@ private:
   int solves_ = 0;
 };
 
-// A failed linear solve stops the run at once, wherever it happens in the increment (a
-// smaller increment would hand the solver similar systems), and names the reason.
-TEST(Newton, LinearFailureIsNotRetried) {
+// A failed linear solve at an increment's first solve stops the run at once (a smaller
+// increment starts from the same tangent), and names the reason.
+TEST(Newton, LinearFailureAtTheFirstSolveIsNotRetried) {
   Cantilever c;
-  for (int fail_at : {1, 2}) {
-    FailingSolver solver({fail_at});
+  FailingSolver solver({1});
+  QuasiStaticSolver newton(PETSC_COMM_WORLD, c.p, NewtonSettings{}, solver);
+  const auto parts = newton.run();
+  ASSERT_EQ(parts.size(), 1u);
+  EXPECT_EQ(parts.front().reason, NewtonReason::DivergedLinearSolver);
+  EXPECT_EQ(parts.front().iterations.size(), 1u);
+  EXPECT_FALSE(parts.front().retried);
+}
+
+// Past the first solve the increment is retried over half of it, once per load step: a
+// second linear failure in the same step stops the run.
+TEST(Newton, LaterLinearFailureIsRetriedOncePerLoadStep) {
+  Cantilever c;
+  {
+    FailingSolver solver({2});
     QuasiStaticSolver newton(PETSC_COMM_WORLD, c.p, NewtonSettings{}, solver);
     const auto parts = newton.run();
-    ASSERT_EQ(parts.size(), 1u) << "failing solve " << fail_at;
+    ASSERT_GE(parts.size(), 2u);
     EXPECT_EQ(parts.front().reason, NewtonReason::DivergedLinearSolver);
-    EXPECT_EQ(parts.front().iterations.size(), static_cast<size_t>(fail_at));
-    EXPECT_FALSE(parts.front().retried);
+    EXPECT_EQ(parts.front().iterations.size(), 2u);
+    EXPECT_TRUE(parts.front().retried);
+    EXPECT_EQ(parts[1].cut, 1);
+    EXPECT_TRUE(parts.back().converged());
+    EXPECT_EQ(parts.back().step, c.p.n_steps()) << "the run goes on to its end";
+  }
+  {
+    FailingSolver solver({2, 4});  // the half increment's second solve fails again
+    QuasiStaticSolver newton(PETSC_COMM_WORLD, c.p, NewtonSettings{}, solver);
+    const auto parts = newton.run();
+    ASSERT_EQ(parts.size(), 2u);
+    EXPECT_TRUE(parts[0].retried);
+    EXPECT_EQ(parts[1].reason, NewtonReason::DivergedLinearSolver);
+    EXPECT_EQ(parts[1].iterations.size(), 2u);
+    EXPECT_FALSE(parts[1].retried);
   }
 }
 

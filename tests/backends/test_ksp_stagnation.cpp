@@ -1,0 +1,88 @@
+// The Krylov stagnation test of every GMRES backend (solvers/ksp_solver.hpp): a hopeless
+// solve stops after one window as DIVERGED_STAGNATION, a slow but steady one is left alone.
+#include <gtest/gtest.h>
+
+#include <petscksp.h>
+
+#include <string>
+
+#include "common/petsc.hpp"
+#include "nonlinear/newton_system.hpp"
+#include "registry.hpp"
+
+namespace {
+
+using stiction::nonlinear::LinearSolveStats;
+using stiction::nonlinear::NewtonSystem;
+
+// A system of size n with the given entries (i, j, value) and right side e_0 (or all ones).
+NewtonSystem system_of(PetscInt n, const std::vector<std::tuple<PetscInt, PetscInt, double>>& entries,
+                       bool ones = false) {
+  NewtonSystem s;
+  STICTION_PETSC(MatCreateSeqAIJ(PETSC_COMM_SELF, n, n, 3, nullptr, s.matrix.out()));
+  for (const auto& [i, j, v] : entries) STICTION_PETSC(MatSetValue(s.matrix, i, j, v, INSERT_VALUES));
+  STICTION_PETSC(MatAssemblyBegin(s.matrix, MAT_FINAL_ASSEMBLY));
+  STICTION_PETSC(MatAssemblyEnd(s.matrix, MAT_FINAL_ASSEMBLY));
+  STICTION_PETSC(MatCreateVecs(s.matrix, nullptr, s.rhs.out()));
+  if (ones) {
+    STICTION_PETSC(VecSet(s.rhs, 1.0));
+  } else {
+    STICTION_PETSC(VecSetValue(s.rhs, 0, 1.0, INSERT_VALUES));
+    STICTION_PETSC(VecAssemblyBegin(s.rhs));
+    STICTION_PETSC(VecAssemblyEnd(s.rhs));
+  }
+  return s;
+}
+
+// ilu-gmres with the preconditioner switched off and extra options, on `system`.
+LinearSolveStats solve_unpreconditioned(const NewtonSystem& system, const std::string& options) {
+  STICTION_PETSC(PetscOptionsInsertString(nullptr, ("-ilu_gmres_pc_type none " + options).c_str()));
+  auto solver = stiction::solvers::create_solver("ilu-gmres", PETSC_COMM_WORLD);
+  solver->setup(system);
+  stiction::PetscVec x;
+  STICTION_PETSC(VecDuplicate(system.rhs, x.out()));
+  const LinearSolveStats stats = solver->solve(system, x);
+  STICTION_PETSC(PetscOptionsClearValue(nullptr, "-ilu_gmres_pc_type"));
+  STICTION_PETSC(PetscOptionsClearValue(nullptr, "-ilu_gmres_ksp_stagnation_margin"));
+  STICTION_PETSC(PetscOptionsClearValue(nullptr, "-ilu_gmres_ksp_gmres_restart"));
+  return stats;
+}
+
+// The cyclic shift: GMRES on (S, e_0) makes no progress before its n-th iteration, so
+// GMRES(100) on n = 300 never converges.
+NewtonSystem cyclic_shift(PetscInt n) {
+  std::vector<std::tuple<PetscInt, PetscInt, double>> entries;
+  for (PetscInt i = 0; i < n; ++i) entries.emplace_back((i + 1) % n, i, 1.0);
+  return system_of(n, entries);
+}
+
+TEST(KrylovStagnation, AHopelessSolveStopsAfterOneWindow) {
+  const NewtonSystem shift = cyclic_shift(300);
+  const LinearSolveStats guarded = solve_unpreconditioned(shift, "");
+  EXPECT_FALSE(guarded.converged);
+  EXPECT_EQ(guarded.reason, "DIVERGED_STAGNATION");
+  EXPECT_EQ(guarded.iterations, 500) << "one window of the default 500 iterations";
+  // Switched off, the same solve runs to -ksp_max_it (2000 in ilu-gmres.opts).
+  const LinearSolveStats unguarded = solve_unpreconditioned(shift, "-ilu_gmres_ksp_stagnation_margin 0");
+  EXPECT_FALSE(unguarded.converged);
+  EXPECT_EQ(unguarded.reason, "DIVERGED_ITS");
+  EXPECT_EQ(unguarded.iterations, 2000);
+}
+
+TEST(KrylovStagnation, ASlowSteadySolveIsLeftAlone) {
+  // Diagonal, eigenvalues spread evenly over [1, 1000], unpreconditioned GMRES(5): restarted
+  // GMRES on a definite matrix gains a steady factor per cycle (588 iterations here).
+  const PetscInt n = 1000;
+  std::vector<std::tuple<PetscInt, PetscInt, double>> entries;
+  for (PetscInt i = 0; i < n; ++i) entries.emplace_back(i, i, 1.0 + 999.0 * i / (n - 1));
+  const NewtonSystem diagonal = system_of(n, entries, true);
+  const LinearSolveStats guarded = solve_unpreconditioned(diagonal, "-ilu_gmres_ksp_gmres_restart 5");
+  const LinearSolveStats unguarded =
+      solve_unpreconditioned(diagonal, "-ilu_gmres_ksp_gmres_restart 5 -ilu_gmres_ksp_stagnation_margin 0");
+  ASSERT_TRUE(unguarded.converged) << unguarded.reason;
+  EXPECT_GT(unguarded.iterations, 500) << "longer than one window, or the test shows nothing";
+  EXPECT_TRUE(guarded.converged) << guarded.reason;
+  EXPECT_EQ(guarded.iterations, unguarded.iterations);
+}
+
+}  // namespace
