@@ -327,13 +327,18 @@ private:
   int solves_ = 0;
 };
 
+// The cantilever's run with the linear solves numbered in `fail_at` failing.
+std::vector<StepResult> run_failing_at(const Cantilever& c, std::vector<int> fail_at) {
+  FailingSolver solver(std::move(fail_at));
+  QuasiStaticSolver newton(PETSC_COMM_WORLD, c.p, NewtonSettings{}, solver);
+  return newton.run();
+}
+
 // A failed linear solve at an increment's first solve stops the run at once (a smaller
 // increment starts from the same tangent), and names the reason.
 TEST(Newton, LinearFailureAtTheFirstSolveIsNotRetried) {
   Cantilever c;
-  FailingSolver solver({1});
-  QuasiStaticSolver newton(PETSC_COMM_WORLD, c.p, NewtonSettings{}, solver);
-  const auto parts = newton.run();
+  const auto parts = run_failing_at(c, {1});
   ASSERT_EQ(parts.size(), 1u);
   EXPECT_EQ(parts.front().reason, NewtonReason::DivergedLinearSolver);
   EXPECT_EQ(parts.front().iterations.size(), 1u);
@@ -344,28 +349,21 @@ TEST(Newton, LinearFailureAtTheFirstSolveIsNotRetried) {
 // second linear failure in the same step stops the run.
 TEST(Newton, LaterLinearFailureIsRetriedOncePerLoadStep) {
   Cantilever c;
-  {
-    FailingSolver solver({2});
-    QuasiStaticSolver newton(PETSC_COMM_WORLD, c.p, NewtonSettings{}, solver);
-    const auto parts = newton.run();
-    ASSERT_GE(parts.size(), 2u);
-    EXPECT_EQ(parts.front().reason, NewtonReason::DivergedLinearSolver);
-    EXPECT_EQ(parts.front().iterations.size(), 2u);
-    EXPECT_TRUE(parts.front().retried);
-    EXPECT_EQ(parts[1].cut, 1);
-    EXPECT_TRUE(parts.back().converged());
-    EXPECT_EQ(parts.back().step, c.p.n_steps()) << "the run goes on to its end";
-  }
-  {
-    FailingSolver solver({2, 4});  // the half increment's second solve fails again
-    QuasiStaticSolver newton(PETSC_COMM_WORLD, c.p, NewtonSettings{}, solver);
-    const auto parts = newton.run();
-    ASSERT_EQ(parts.size(), 2u);
-    EXPECT_TRUE(parts[0].retried);
-    EXPECT_EQ(parts[1].reason, NewtonReason::DivergedLinearSolver);
-    EXPECT_EQ(parts[1].iterations.size(), 2u);
-    EXPECT_FALSE(parts[1].retried);
-  }
+  const auto retried = run_failing_at(c, {2});
+  ASSERT_GE(retried.size(), 2u);
+  EXPECT_EQ(retried.front().reason, NewtonReason::DivergedLinearSolver);
+  EXPECT_EQ(retried.front().iterations.size(), 2u);
+  EXPECT_TRUE(retried.front().retried);
+  EXPECT_EQ(retried[1].cut, 1);
+  EXPECT_TRUE(retried.back().converged());
+  EXPECT_EQ(retried.back().step, c.p.n_steps()) << "the run goes on to its end";
+
+  const auto twice = run_failing_at(c, {2, 4});  // the half increment's second solve fails again
+  ASSERT_EQ(twice.size(), 2u);
+  EXPECT_TRUE(twice[0].retried);
+  EXPECT_EQ(twice[1].reason, NewtonReason::DivergedLinearSolver);
+  EXPECT_EQ(twice[1].iterations.size(), 2u);
+  EXPECT_FALSE(twice[1].retried);
 }
 
 TEST(Newton, SystemCarriesFieldsAndNearNullSpace) {
