@@ -334,15 +334,20 @@ std::vector<StepResult> run_failing_at(const Cantilever& c, std::vector<int> fai
   return newton.run();
 }
 
+// `part` failed in its linear solver at Newton iteration `iterations`, retried or not.
+void expect_linear_failure(const StepResult& part, size_t iterations, bool retried) {
+  EXPECT_EQ(part.reason, NewtonReason::DivergedLinearSolver);
+  EXPECT_EQ(part.iterations.size(), iterations);
+  EXPECT_EQ(part.retried, retried);
+}
+
 // A failed linear solve at an increment's first solve stops the run at once (a smaller
 // increment starts from the same tangent), and names the reason.
 TEST(Newton, LinearFailureAtTheFirstSolveIsNotRetried) {
   Cantilever c;
   const auto parts = run_failing_at(c, {1});
   ASSERT_EQ(parts.size(), 1u);
-  EXPECT_EQ(parts.front().reason, NewtonReason::DivergedLinearSolver);
-  EXPECT_EQ(parts.front().iterations.size(), 1u);
-  EXPECT_FALSE(parts.front().retried);
+  expect_linear_failure(parts.front(), 1, false);
 }
 
 // Past the first solve the increment is retried over half of it, once per load step: a
@@ -351,19 +356,15 @@ TEST(Newton, LaterLinearFailureIsRetriedOncePerLoadStep) {
   Cantilever c;
   const auto retried = run_failing_at(c, {2});
   ASSERT_GE(retried.size(), 2u);
-  EXPECT_EQ(retried.front().reason, NewtonReason::DivergedLinearSolver);
-  EXPECT_EQ(retried.front().iterations.size(), 2u);
-  EXPECT_TRUE(retried.front().retried);
+  expect_linear_failure(retried.front(), 2, true);
   EXPECT_EQ(retried[1].cut, 1);
   EXPECT_TRUE(retried.back().converged());
   EXPECT_EQ(retried.back().step, c.p.n_steps()) << "the run goes on to its end";
 
   const auto twice = run_failing_at(c, {2, 4});  // the half increment's second solve fails again
   ASSERT_EQ(twice.size(), 2u);
-  EXPECT_TRUE(twice[0].retried);
-  EXPECT_EQ(twice[1].reason, NewtonReason::DivergedLinearSolver);
-  EXPECT_EQ(twice[1].iterations.size(), 2u);
-  EXPECT_FALSE(twice[1].retried);
+  expect_linear_failure(twice[0], 2, true);
+  expect_linear_failure(twice[1], 2, false);
 }
 
 TEST(Newton, SystemCarriesFieldsAndNearNullSpace) {
