@@ -521,7 +521,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
     }
     rec.linear = linear_.solve(system_, du);
     if (observer_) observer_(system_, du, rec.linear, step, it + 1);
-    if (!rec.linear.converged) {
+    if (!rec.linear.converged && !usable_direction(rec.linear)) {
       res.iterations.push_back(rec);
       res.detail = fmt::format("linear solver {} stopped with {}", linear_.name(), rec.linear.reason);
       return finish(NewtonReason::DivergedLinearSolver);
@@ -608,6 +608,18 @@ void QuasiStaticSolver::restore(const State& s) {
   completed_step_ = s.step;
 }
 
+// An inexact-Newton direction: a Krylov solve that stopped (out of iterations, or
+// stagnating) within kUsableForcingFactor of its relative tolerance. The Newton stopping
+// test does not change, so neither does the answer; only a looser forcing term enters
+// this one step. Measured on ironing-2d-frictionless level 1 at t = 1.15 (schur-amg): the
+// second system of the step stagnates at 1.7e-4 against 1e-4 (1.735e-4 after 1 000 GMRES
+// iterations) and stopped the run.
+bool QuasiStaticSolver::usable_direction(const LinearSolveStats& s) {
+  const auto rtol = s.extra.find("ksp_rtol");
+  if (rtol == s.extra.end() || !(s.initial_residual > 0) || !std::isfinite(s.final_residual)) return false;
+  return s.final_residual <= kUsableForcingFactor * rtol->second * s.initial_residual;
+}
+
 // A failed linear solve is retried over a smaller increment only where the increment could
 // be the cause: not at the increment's first solve (its matrix is the tangent at the last
 // converged state whatever the increment's size, so a smaller one hands the solver the same
@@ -645,7 +657,9 @@ std::vector<StepResult> QuasiStaticSolver::run(const std::function<void(const St
         if (!r.retried) return all;
         if (r.reason == NewtonReason::DivergedLinearSolver) linear_failure_retried = true;
         restore(saved);
-        increment *= 0.5;
+        // Half of what was attempted: a grown-back increment may have been clamped to the
+        // step's end, and halving the nominal one would attempt the same increment again.
+        increment = 0.5 * (t - time_);
         ++cut;
         converged_at_cut = 0;
         continue;

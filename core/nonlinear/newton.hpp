@@ -161,6 +161,8 @@ private:
                                     Residuals& r, bool elastic) const;
   int update_constraint_states(double t, const std::vector<double>& dlambda);
   static bool retry_allowed(const StepResult& failed, bool linear_failure_retried);
+  static constexpr double kUsableForcingFactor = 2;  // usable_direction
+  static bool usable_direction(const LinearSolveStats& s);
   void report_state_changes(int step, int iteration, double t, const std::vector<char>& before) const;
   // Pieces of solve_increment: the increment's prescribed values (target_), the norm of the lifted
   // right side's free rows, the split of a Newton update into u (and p) and multipliers,

@@ -367,6 +367,76 @@ TEST(Newton, LaterLinearFailureIsRetriedOncePerLoadStep) {
   expect_linear_failure(twice[1], 2, false);
 }
 
+// A retry halves the increment that was attempted. After a cut-back the increment grows
+// back mid-step and may be clamped to the step's end; halving the nominal increment then
+// attempted the same one again (ironing-2d level 1 at t = 1.255: the same 8 iterations and
+// residual twice, and the run stopped).
+TEST(Newton, RetryHalvesTheIncrementAttemptedAtTheStepsEnd) {
+  Cantilever c;
+  // Step 1 fails at its second solve and ends in two halves; step 2 starts at half size,
+  // grows back after its first part, and its second part is clamped to the step's end.
+  const auto plain = run_failing_at(c, {2});
+  ASSERT_GE(plain.size(), 5u);
+  ASSERT_EQ(plain[3].step, 2);
+  ASSERT_FALSE(plain[3].completes_step) << "step 2 starts at half size";
+  ASSERT_TRUE(plain[4].completes_step);
+  int solves_before = 0;
+  for (int k = 0; k < 4; ++k) solves_before += static_cast<int>(plain[k].iterations.size());
+  const auto parts = run_failing_at(c, {2, solves_before + 2});  // the clamped part's second solve
+  ASSERT_GE(parts.size(), 6u);
+  expect_linear_failure(parts[4], 2, true);
+  EXPECT_LT(parts[5].time, parts[4].time) << "the retry must attempt less than the failed increment";
+  EXPECT_TRUE(parts.back().converged());
+  EXPECT_EQ(parts.back().step, c.p.n_steps());
+}
+
+// lu-mumps reporting every solve as a Krylov solve asked for rtol 1e-4 that stopped
+// unconverged (DIVERGED_ITS) at `relative` x its right side (the direction itself is exact:
+// what is tested is the driver's decision).
+class StalledSolver : public LinearSolver {
+public:
+  explicit StalledSolver(double relative)
+      : inner_(solvers::create_solver("lu-mumps", PETSC_COMM_WORLD)), relative_(relative) {}
+  std::string name() const override { return "stalled-lu"; }
+  void setup(const NewtonSystem& system) override { inner_->setup(system); }
+  LinearSolveStats solve(const NewtonSystem& system, Vec x) override {
+    LinearSolveStats s = inner_->solve(system, x);
+    s.converged = false;
+    s.reason = "DIVERGED_ITS";
+    s.extra["ksp_rtol"] = 1e-4;
+    s.final_residual = relative_ * s.initial_residual;
+    return s;
+  }
+  std::string describe() const override { return inner_->describe(); }
+  void apply_preconditioner(Vec in, Vec out) const override { inner_->apply_preconditioner(in, out); }
+
+private:
+  std::unique_ptr<LinearSolver> inner_;
+  double relative_;
+};
+
+// An unconverged Krylov solve within a factor 2 of its tolerance is an inexact-Newton
+// direction and Newton goes on; farther off it stops the run as a failed linear solve.
+TEST(Newton, KrylovSolveNearItsToleranceIsAUsableDirection) {
+  Cantilever c;
+  {
+    StalledSolver near(1.5e-4);
+    QuasiStaticSolver newton(PETSC_COMM_WORLD, c.p, NewtonSettings{}, near);
+    const auto parts = newton.run();
+    ASSERT_FALSE(parts.empty());
+    EXPECT_TRUE(parts.back().converged()) << to_string(parts.back().reason);
+    EXPECT_EQ(parts.back().step, c.p.n_steps());
+    EXPECT_EQ(parts.front().iterations.front().linear.reason, "DIVERGED_ITS") << "the record keeps the reason";
+  }
+  {
+    StalledSolver far(3e-4);
+    QuasiStaticSolver newton(PETSC_COMM_WORLD, c.p, NewtonSettings{}, far);
+    const auto parts = newton.run();
+    ASSERT_EQ(parts.size(), 1u) << "at the first solve: not retried";
+    expect_linear_failure(parts.front(), 1, false);
+  }
+}
+
 TEST(Newton, SystemCarriesFieldsAndNearNullSpace) {
   Cantilever c;
   auto solver = solvers::create_solver("lu-mumps", PETSC_COMM_WORLD);
