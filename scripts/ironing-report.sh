@@ -6,15 +6,15 @@
 # scene. The force on the indenter is the multiplier's integral (F3, contact_ironing_force_*:
 # the force the slab exerts on the indenter); the published band at t = 1 (per unit
 # thickness, with friction): vertical 268-332, horizontal 55-71.
-# IRONING_LEVELS (default 0), IRONING_SOLVERS (default lu-mumps,schur-amg) and
-# IRONING_TIME_LIMIT (seconds per run, default 3600) adjust it.
+# IRONING_LEVELS (default 0), IRONING_SOLVERS (default lu-mumps,schur-amg), IRONING_SCENES
+# (default both) and IRONING_TIME_LIMIT (seconds per run, default 3600) adjust it.
 set -euo pipefail
 build=${1:-build}
 out=${IRONING_OUT:-reports/ironing-2d}
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
 source "$(dirname "$0")/ensure-gnuplot.sh"
 mkdir -p "$out"
-"$build/stiction" bench --scenes ironing-2d,ironing-2d-frictionless --solvers "${IRONING_SOLVERS:-lu-mumps,schur-amg}" \
+"$build/stiction" bench --scenes "${IRONING_SCENES:-ironing-2d,ironing-2d-frictionless}" --solvers "${IRONING_SOLVERS:-lu-mumps,schur-amg}" \
   --levels "${IRONING_LEVELS:-0}" --time-limit "${IRONING_TIME_LIMIT:-3600}" --out "$out" --resume
 
 # One data file per run: t, F3 x, F3 y, Newton iterations, converged (comments dropped).
