@@ -8,7 +8,9 @@
 //
 // Convergence: ||r_free|| <= max(atol, rtol * r_ref), where r_ref is the larger of the
 // step's initial free residual and the right side of its first (lifted) system, i.e. the
-// size of the load increment. Every stop without convergence carries a named reason.
+// size of the load increment. Every stop without convergence carries a named reason. A
+// Krylov solve that stops unconverged within twice its tolerance still gives the update
+// (usable_direction); one farther off is a failed linear solve.
 //
 // Contact (problem.constraints): the multipliers follow the displacement (and pressure)
 // unknowns, the system is the augmented (30), and a step converges only when, in addition,
