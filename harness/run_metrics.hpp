@@ -32,5 +32,4 @@ struct RunSummary {
 void write_metrics(const std::string& path, const scene::Scene& scene, const RunSummary& summary,
                    const std::vector<nonlinear::StepResult>& steps);
 
-
 }  // namespace stiction::harness
