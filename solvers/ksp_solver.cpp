@@ -38,10 +38,25 @@ std::string compact_options(const std::string& name) {
   return out;
 }
 
+// An options file's text with each "@include <name>" line replaced by the text of the
+// embedded file <name>.opts (the parts several backends share), recursively.
 std::string default_options(const std::string& name) {
   const auto& all = embedded_options();
   auto it = all.find(name);
-  return it == all.end() ? std::string() : it->second;
+  if (it == all.end()) return {};
+  std::istringstream lines(it->second);
+  std::string line, out;
+  const std::string directive = "@include ";
+  while (std::getline(lines, line)) {
+    if (line.rfind(directive, 0) != 0) {
+      out += line + "\n";
+      continue;
+    }
+    const std::string part = line.substr(directive.size());
+    if (!all.count(part)) throw Error(fmt::format("options file '{}': no embedded options '{}' to include", name, part), ErrorKind::Internal);
+    out += default_options(part);
+  }
+  return out;
 }
 
 namespace {

@@ -21,7 +21,7 @@ namespace stiction::solvers {
 
 // "schur-amg" -> "schur_amg_"
 std::string options_prefix(const std::string& backend_name);
-// The embedded default options of a backend (empty if it has none).
+// The embedded default options of a backend, shared parts included (empty if it has none).
 std::string default_options(const std::string& backend_name);
 // The same on one line, without comments ("-ksp_type gmres -pc_type shell ...").
 std::string compact_options(const std::string& backend_name);

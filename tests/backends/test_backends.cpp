@@ -12,6 +12,7 @@
 #include "builtin_scenes.hpp"
 #include "contact/contact_pair.hpp"
 #include "nonlinear/newton.hpp"
+#include "ksp_solver.hpp"
 #include "registry.hpp"
 #include "scene/scene.hpp"
 #include "support/solve_scene.hpp"
@@ -240,6 +241,21 @@ TEST(Registry, UnknownBackendListsTheValidNames) {
     const std::string msg = e.what();
     for (const auto& b : solvers::backends()) EXPECT_NE(msg.find(b.name), std::string::npos) << msg;
   }
+}
+
+// The shared parts of the options files arrive in every backend that includes them: each
+// GMRES backend's defaults carry the refined Gram-Schmidt and the common tolerance, both
+// Schur backends the quadratic-level sweep, and no "@include" line is left for PETSc.
+TEST(Registry, DefaultOptionsExpandTheirSharedParts) {
+  for (const char* name : {"boomeramg", "ilu-gmres", "schur-amg", "schur-lu"}) {
+    const std::string opts = solvers::default_options(name);
+    EXPECT_NE(opts.find("-ksp_gmres_cgs_refinement_type refine_ifneeded\n"), std::string::npos) << name;
+    EXPECT_NE(opts.find("-ksp_rtol 1e-4\n"), std::string::npos) << name;
+    EXPECT_EQ(opts.find("@include"), std::string::npos) << name;
+    const bool schur = std::string(name).rfind("schur", 0) == 0;
+    EXPECT_EQ(opts.find("-qq_pc_type sor\n") != std::string::npos, schur) << name;
+  }
+  EXPECT_EQ(solvers::compact_options("schur-lu").find("@include"), std::string::npos);
 }
 
 }  // namespace
