@@ -1,12 +1,22 @@
 #include "mesh/structured_tube.hpp"
 
-
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
 #include "common/error.hpp"
 
 namespace stiction::mesh {
+
+namespace {
+
+int max_facet_tag(const Mesh& m) {
+  int largest = 0;
+  for (const auto& [name, tag] : m.facet_tag_names) largest = std::max(largest, tag);
+  return largest;
+}
+
+}  // namespace
 
 Mesh structured_tube(const TubeSpec& spec) {
   if (!(spec.inner_radius > 0) || !(spec.thickness > 0) || !(spec.length > 0))
@@ -17,9 +27,21 @@ Mesh structured_tube(const TubeSpec& spec) {
   for (int n : spec.cells)
     if (n < 1) throw Error("tube generator: cells must be positive");
   if (spec.axis < 0 || spec.axis > 2) throw Error("tube generator: axis must be x, y or z");
+  const bool split = !std::isnan(spec.inner_split_degrees);
+  const double split_at = (spec.inner_split_degrees - spec.angles_degrees[0]) / span;  // in the unit box
+  if (split && !(split_at > 0 && split_at < 1))
+    throw Error("tube generator: inner_split must lie strictly between the two angles");
 
   // Unit box cells in (radial, angular, axial) parameters, then the map onto the cylinders.
   Mesh m = structured_box(3, {1.0, 1.0, 1.0}, spec.cells);
+  const int inner = m.facet_tag_names.at("xmin"), inner1 = split ? max_facet_tag(m) + 1 : inner;
+  if (split)
+    for (int f = 0; f < m.n_facets(); ++f) {
+      if (m.facet_tags[f] != inner) continue;
+      double angular = 0;
+      for (int k = 0; k < 3; ++k) angular += m.vertex(m.facet(f)[k])[1] / 3;
+      if (angular > split_at) m.facet_tags[f] = inner1;
+    }
   const int e = spec.axis, a = (e + 1) % 3, b = (e + 2) % 3;
   const double theta0 = spec.angles_degrees[0] * M_PI / 180, dtheta = span * M_PI / 180;
   for (int v = 0; v < m.n_vertices(); ++v) {
@@ -37,6 +59,10 @@ Mesh structured_tube(const TubeSpec& spec) {
                                                          {"ymax", "side1"}, {"zmin", "start"}, {"zmax", "end"}};
   std::map<std::string, int> names;
   for (const auto& [from, to] : renames) names[to] = m.facet_tag_names.at(from);
+  if (split) {
+    names.erase("inner");
+    names["inner0"] = inner, names["inner1"] = inner1;
+  }
   m.facet_tag_names = std::move(names);
   return m;
 }

@@ -76,6 +76,8 @@ struct Schemas {
              {"axis", VT::String, "'tube': axis direction", false, std::string("z"), {"x", "y", "z"}},
              {"center", VT::FloatArray, "'tube': x, y, z of the axis point at the tube's start face", false},
              {"angles", VT::FloatArray, "'tube': first and last angle around the axis in degrees (from y, z or x for axis x, y or z)", false},
+             {"inner_split", VT::Float, "'tube': an angle between the two at which the inner cylinder is named in two halves, 'inner0' and "
+                                        "'inner1' (a self-contact pair for a tube that flattens)", false},
              {"grooves", VT::Integer, "'grooved-block': number of grooves along y in the bottom face (z = 0), evenly spaced between equal strips", false,
               std::int64_t{mesh::GroovedBlockSpec{}.grooves}},
              {"groove_width", VT::Float, "'grooved-block': groove width along x", false, mesh::GroovedBlockSpec{}.groove_width},
@@ -254,6 +256,7 @@ mesh::Mesh make_tube_mesh(const toml::table& t, const std::string& file, const s
     spec.cells[k] = static_cast<int>(cells[k]) << level;
   }
   spec.angles_degrees = {angles[0], angles[1]};
+  if (t.contains("inner_split")) spec.inner_split_degrees = get_float(t, S, "inner_split");
   *refined = true;
   try {
     return mesh::structured_tube(spec);

@@ -321,6 +321,35 @@ TEST(Generators, TubeVerticesLieOnTheCylinders) {
   EXPECT_EQ(checked.size(), 6u);
 }
 
+// inner_split names the inner cylinder in two halves at the angle given: every "inner0"
+// vertex at an angle up to it, every "inner1" vertex from it on (angle from +y towards +z
+// for a tube along x), as many facets in each as cells on each side, and no "inner" left.
+TEST(Generators, TubeInnerSplitNamesTwoHalvesAtTheAngle) {
+  TubeSpec spec;
+  spec.inner_radius = 11.2, spec.thickness = 0.8, spec.length = 50;
+  spec.axis = 0, spec.center = {0, 24, 0}, spec.angles_degrees = {0, 180}, spec.cells = {2, 12, 4};
+  spec.inner_split_degrees = 60;
+  const Mesh m = structured_tube(spec);
+  ASSERT_EQ(m.facet_tag_names.count("inner"), 0u);
+  const int tag0 = m.facet_tag_names.at("inner0"), tag1 = m.facet_tag_names.at("inner1");
+  int n0 = 0, n1 = 0;
+  for (int f = 0; f < m.n_facets(); ++f) {
+    if (m.facet_tags[f] != tag0 && m.facet_tags[f] != tag1) continue;
+    (m.facet_tags[f] == tag0 ? n0 : n1)++;
+    for (int k = 0; k < 3; ++k) {
+      const double* x = m.vertex(m.facet(f)[k]);
+      const double angle = std::atan2(x[2], x[1] - 24) * 180 / M_PI;
+      EXPECT_NEAR(std::hypot(x[1] - 24, x[2]), 11.2, 1e-12);
+      if (m.facet_tags[f] == tag0) EXPECT_LE(angle, 60 + 1e-9);
+      else EXPECT_GE(angle, 60 - 1e-9);
+    }
+  }
+  EXPECT_EQ(n0, 2 * 4 * 4);
+  EXPECT_EQ(n1, 2 * 8 * 4);
+  spec.inner_split_degrees = 180;
+  EXPECT_THROW(structured_tube(spec), Error);
+}
+
 TEST(Generators, TubeRejectsBadDimensions) {
   TubeSpec spec;
   spec.inner_radius = 1, spec.thickness = 0.1, spec.length = 2;
