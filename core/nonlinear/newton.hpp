@@ -9,7 +9,7 @@
 // Convergence: ||r_free|| <= max(atol, rtol * r_ref), where r_ref is the larger of the
 // step's initial free residual and the right side of its first (lifted) system, i.e. the
 // size of the load increment. Every stop without convergence carries a named reason. A
-// Krylov solve that stops unconverged within twice its tolerance still gives the update
+// Krylov solve that stops unconverged within ten times its tolerance still gives the update
 // (usable_direction); one farther off is a failed linear solve.
 //
 // Contact (problem.constraints): the multipliers follow the displacement (and pressure)
@@ -163,7 +163,7 @@ private:
                                     Residuals& r, bool elastic) const;
   int update_constraint_states(double t, const std::vector<double>& dlambda);
   static bool retry_allowed(const StepResult& failed, bool linear_failure_retried);
-  static constexpr double kUsableForcingFactor = 2;  // usable_direction
+  static constexpr double kUsableForcingFactor = 10;  // usable_direction
   static bool usable_direction(const LinearSolveStats& s);
   void report_state_changes(int step, int iteration, double t, const std::vector<char>& before) const;
   // Pieces of solve_increment: the increment's prescribed values (target_), the norm of the lifted

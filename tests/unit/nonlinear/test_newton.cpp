@@ -415,12 +415,12 @@ private:
   double relative_;
 };
 
-// An unconverged Krylov solve within a factor 2 of its tolerance is an inexact-Newton
+// An unconverged Krylov solve within a factor 10 of its tolerance is an inexact-Newton
 // direction and Newton goes on; farther off it stops the run as a failed linear solve.
 TEST(Newton, KrylovSolveNearItsToleranceIsAUsableDirection) {
   Cantilever c;
   {
-    StalledSolver near(1.5e-4);
+    StalledSolver near(7.5e-4);
     QuasiStaticSolver newton(PETSC_COMM_WORLD, c.p, NewtonSettings{}, near);
     const auto parts = newton.run();
     ASSERT_FALSE(parts.empty());
@@ -429,7 +429,7 @@ TEST(Newton, KrylovSolveNearItsToleranceIsAUsableDirection) {
     EXPECT_EQ(parts.front().iterations.front().linear.reason, "DIVERGED_ITS") << "the record keeps the reason";
   }
   {
-    StalledSolver far(3e-4);
+    StalledSolver far(1.5e-3);
     QuasiStaticSolver newton(PETSC_COMM_WORLD, c.p, NewtonSettings{}, far);
     const auto parts = newton.run();
     ASSERT_EQ(parts.size(), 1u) << "at the first solve: not retried";
