@@ -12,7 +12,9 @@ namespace stiction::harness {
 
 namespace {
 
-constexpr char kMagic[8] = {'S', 'T', 'I', 'C', 'K', 'P', 'T', '1'};
+// Format 2 appends the linear-solve tally to format 1, which is still read.
+constexpr char kMagic[8] = {'S', 'T', 'I', 'C', 'K', 'P', 'T', '2'};
+constexpr char kMagicFormat1[8] = {'S', 'T', 'I', 'C', 'K', 'P', 'T', '1'};
 
 class Writer {
 public:
@@ -88,6 +90,8 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
     w.doubles(c.state.lambda);
     w.u64(c.state.constraints.size());
     for (const auto& s : c.state.constraints) w.doubles(s);
+    w.u64(static_cast<std::uint64_t>(c.tally.solves));
+    w.u64(static_cast<std::uint64_t>(c.tally.failures));
     if (!out) throw Error(fmt::format("cannot write checkpoint '{}'", path));
   }
   if (std::rename(tmp.c_str(), path.c_str()) != 0) throw Error(fmt::format("cannot write checkpoint '{}'", path));
@@ -98,7 +102,8 @@ Checkpoint read_checkpoint(const std::string& path) {
   if (!in) throw Error(fmt::format("no checkpoint '{}' to restart from", path));
   char magic[sizeof kMagic];
   in.read(magic, sizeof magic);
-  if (!in || !std::equal(magic, magic + sizeof magic, kMagic))
+  const bool format1 = in && std::equal(magic, magic + sizeof magic, kMagicFormat1);
+  if (!in || (!format1 && !std::equal(magic, magic + sizeof magic, kMagic)))
     throw Error(fmt::format("'{}' is not a stiction checkpoint", path));
   Reader r(in, path);
   Checkpoint c;
@@ -111,6 +116,10 @@ Checkpoint read_checkpoint(const std::string& path) {
   const std::uint64_t n = r.u64();
   if (n > 1000) throw Error(fmt::format("checkpoint '{}' is truncated or damaged", path));
   for (std::uint64_t k = 0; k < n; ++k) c.state.constraints.push_back(r.doubles());
+  if (!format1) {
+    c.tally.solves = static_cast<int>(r.u64());
+    c.tally.failures = static_cast<int>(r.u64());
+  }
   return c;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // Checkpoint of a solve: after every completed load step `stiction solve` writes the
 // converged state (displacement, multipliers, contact states, the step and its pseudo-time)
-// to <out>/checkpoint.bin, replacing the previous one atomically, so that
+// and the run's tally of linear solves to <out>/checkpoint.bin, replacing the previous one atomically, so that
 // `stiction solve <scene> --restart <out>` continues a failed or killed run from there.
 // The file names its scene and level; a restart refuses a checkpoint of another scene,
 // level or size.
@@ -15,6 +15,7 @@ struct Checkpoint {
   std::string scene;
   int level = 0;
   nonlinear::QuasiStaticSolver::State state;
+  nonlinear::QuasiStaticSolver::LinearTally tally;  // zero from a checkpoint of format 1
 };
 
 void write_checkpoint(const std::string& path, const Checkpoint& c);

@@ -86,7 +86,10 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   }
   PvdCollection pvd(out_dir + "/solution.pvd");
   nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, scene->problem, scene->newton, *solver);
-  if (restart) newton.restore(resume.state);
+  if (restart) {
+    newton.restore(resume.state);
+    newton.set_linear_tally(resume.tally);
+  }
   const int first_step = restart ? resume.state.step + 1 : 1;
   if (!o.record_dir.empty()) {
     const RecordContext context{scene->name, scene->level, o.solver, info};
@@ -102,7 +105,8 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   auto results = newton.run([&](const nonlinear::StepResult& r) {
     if (table) table->add(r, *scene);
     if (iteration_table) iteration_table->add(r);
-    if (r.completes_step) write_checkpoint(out_dir + "/checkpoint.bin", {scene->name, scene->level, newton.state()});
+    if (r.completes_step) write_checkpoint(out_dir + "/checkpoint.bin",
+                                              {scene->name, scene->level, newton.state(), newton.linear_tally()});
     if (contact_table && r.completes_step) contact_table->add(r, *scene, newton.displacement(), newton.multipliers());
     if (scene->output.vtu && o.write_vtu && r.completes_step) {
       const std::string name = fmt::format("step-{:03d}.vtu", r.step);

@@ -128,6 +128,13 @@ public:
   };
   State state() const;
   void restore(const State& s);  // throws when s does not fit this problem
+  // The run's linear solves so far and how many of them failed (retry_allowed reads them);
+  // a checkpoint carries them, so that a restart retries as the uninterrupted run would.
+  struct LinearTally {
+    int solves = 0, failures = 0;
+  };
+  const LinearTally& linear_tally() const { return tally_; }
+  void set_linear_tally(const LinearTally& tally) { tally_ = tally; }
 
   const std::vector<double>& displacement() const { return u_; }
   std::vector<double>& displacement() { return u_; }
@@ -162,7 +169,8 @@ private:
   fem::InternalForceStatus evaluate(double t, const std::vector<double>& u, const std::vector<double>& lambda,
                                     Residuals& r, bool elastic) const;
   int update_constraint_states(double t, const std::vector<double>& dlambda);
-  static bool retry_allowed(const StepResult& failed, bool linear_failure_retried);
+  static bool retry_allowed(const StepResult& failed, bool linear_failure_retried, const LinearTally& tally);
+  static constexpr double kSporadicLinearFailures = 0.02;  // retry_allowed
   static constexpr double kUsableForcingFactor = 10;  // usable_direction
   static bool usable_direction(const LinearSolveStats& s);
   void report_state_changes(int step, int iteration, double t, const std::vector<char>& before) const;
@@ -198,6 +206,7 @@ private:
   NewtonSystem system_;  // its matrix: stiffness_'s, or with contact the augmented matrix built from it
   std::vector<PetscInt> constrained_;         // sorted constrained dofs
   std::vector<char> is_constrained_;          // per dof
+  LinearTally tally_;
   std::vector<std::vector<int>> bc_nodes_;    // per Dirichlet condition
   std::vector<double> target_;                // prescribed values, per constrained dof (this increment)
   double time_ = 0;                           // pseudo-time of the current converged state

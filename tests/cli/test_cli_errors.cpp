@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "builtin_scenes.hpp"
+#include "checkpoint.hpp"
 #include "csv_table.hpp"
 #include "vtu_reader.hpp"
 
@@ -307,6 +308,47 @@ TEST_F(StictionCli, RestartContinuesFromTheLastCompletedStep) {
   expect_error(solve("sliding-block-2d", {"--no-vtu", "--restart", (dir_ / "out").string()}), 2,
                {"checkpoint", "cantilever-2d", "sliding-block-2d"});
   expect_error(solve("cantilever-2d", {"--restart", (dir_ / "nowhere").string()}), 2, {"no checkpoint", "nowhere"});
+}
+
+// A checkpoint carries the run's tally of linear solves (a restart then retries failed
+// solves as the uninterrupted run would); one of format 1, written before the tally, still
+// reads, with a zero tally.
+TEST_F(StictionCli, CheckpointCarriesTheLinearSolveTally) {
+  using stiction::harness::Checkpoint;
+  Checkpoint c;
+  c.scene = "ironing-2d";
+  c.level = 1;
+  c.state.step = 7;
+  c.state.time = 1.25;
+  c.state.u = {1.0, -2.0, 3.5};
+  c.state.lambda = {0.25};
+  c.state.constraints = {{1.0, 2.0}};
+  c.tally = {1234, 5};
+  const std::string path = (dir_ / "checkpoint.bin").string();
+  stiction::harness::write_checkpoint(path, c);
+  const Checkpoint back = stiction::harness::read_checkpoint(path);
+  EXPECT_EQ(back.tally.solves, 1234);
+  EXPECT_EQ(back.tally.failures, 5);
+  EXPECT_EQ(back.state.u, c.state.u);
+  EXPECT_EQ(back.state.constraints, c.state.constraints);
+
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  ASSERT_EQ(bytes[7], '2');
+  bytes[7] = '1';
+  bytes.resize(bytes.size() - 16);  // the two tally counts
+  {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out << bytes;
+  }
+  const Checkpoint old = stiction::harness::read_checkpoint(path);
+  EXPECT_EQ(old.tally.solves, 0);
+  EXPECT_EQ(old.tally.failures, 0);
+  EXPECT_EQ(old.state.u, c.state.u);
+  EXPECT_EQ(old.state.time, 1.25);
 }
 
 // With contact, a restart follows the uninterrupted run's Newton path: the same residual at

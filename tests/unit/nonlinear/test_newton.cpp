@@ -351,7 +351,8 @@ TEST(Newton, LinearFailureAtTheFirstSolveIsNotRetried) {
 }
 
 // Past the first solve the increment is retried over half of it, once per load step: a
-// second linear failure in the same step stops the run.
+// second linear failure in the same step stops the run (after a handful of solves: not
+// sporadic).
 TEST(Newton, LaterLinearFailureIsRetriedOncePerLoadStep) {
   Cantilever c;
   const auto retried = run_failing_at(c, {2});
@@ -365,6 +366,28 @@ TEST(Newton, LaterLinearFailureIsRetriedOncePerLoadStep) {
   ASSERT_EQ(twice.size(), 2u);
   expect_linear_failure(twice[0], 2, true);
   expect_linear_failure(twice[1], 2, false);
+}
+
+// Once a backend has solved nearly all of a run's systems (at most 2% failed), a linear
+// failure is sporadic and is retried again within the same load step: here the last step's
+// second solve fails, and so does its half increment's, after some hundred solves.
+TEST(Newton, SporadicLinearFailuresAreRetriedAgainInTheSameStep) {
+  Cantilever c;
+  c.p.step_times.clear();
+  for (int k = 0; k <= 40; ++k) c.p.step_times.push_back(0.05 * k);
+  const auto plain = run_failing_at(c, {});
+  ASSERT_TRUE(plain.back().converged());
+  int before_last = 0;
+  for (size_t k = 0; k + 1 < plain.size(); ++k) before_last += static_cast<int>(plain[k].iterations.size());
+  ASSERT_GE(before_last, 2 * 50) << "two failures must stay within 2% of the solves";
+  const auto parts = run_failing_at(c, {before_last + 2, before_last + 4});
+  ASSERT_GE(parts.size(), plain.size() + 2);
+  const size_t first = plain.size() - 1;
+  expect_linear_failure(parts[first], 2, true);
+  expect_linear_failure(parts[first + 1], 2, true);
+  EXPECT_EQ(parts[first + 1].cut, 1);
+  EXPECT_TRUE(parts.back().converged());
+  EXPECT_EQ(parts.back().step, c.p.n_steps()) << "the run goes on to its end";
 }
 
 // A retry halves the increment that was attempted. After a cut-back the increment grows
