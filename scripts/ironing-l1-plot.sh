@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# Plots the level-1 runs kept here (force on the indenter against pseudo-time, converged
-# increments only) beside the level-0 lu-mumps runs of ../ironing-2d, with gnuplot.
-# Usage (from the repository root): bash reports/ironing-2d-L1/plot.sh
+# Plots the level-1 runs kept in reports/ironing-2d-L1 (force on the indenter against
+# pseudo-time, converged increments only) beside the level-0 lu-mumps runs of
+# reports/ironing-2d, with gnuplot. Those runs were pieced from restarts, so unlike
+# scripts/ironing-report.sh it plots the kept CSV parts and runs nothing.
+# Usage (from the repository root): bash scripts/ironing-l1-plot.sh
 set -euo pipefail
 here=reports/ironing-2d-L1
 source scripts/ensure-gnuplot.sh
