@@ -14,7 +14,11 @@
 namespace stiction::fem {
 
 struct InternalForceStatus {
-  int inverted_cell = -1;     // first cell with det F <= 0 for a finite-strain law, or -1
+  int inverted_cell = -1;  // first cell with det F <= 0 at a quadrature point (finite-strain law), or -1
+  // First quadratic cell valid at its quadrature points but with det F <= 0 at one of its
+  // nodes (its boundary curves back on itself), or -1: the energy is defined, the
+  // configuration is not a valid one.
+  int folded_cell = -1;
 };
 
 // Adds the internal force vector (residual may be null) and the tangent (tangent may be

@@ -388,6 +388,7 @@ QuasiStaticSolver::TrialStep QuasiStaticSolver::take_step(double t_target, const
     const auto st = evaluate(t_target, trial, trial_lambda, rt, true);
     t.assembly_seconds += seconds_since(t0);
     const double norm = std::hypot(free_norm(rt.u), l2_norm(rt.c));
+    t.folded_cell = st.folded_cell;
     if (st.inverted_cell < 0 && std::isfinite(norm)) break;
     if (bt == settings_.max_backtracks) {
       t.inverted_cell = st.inverted_cell;
@@ -442,6 +443,17 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
   if (st0.inverted_cell >= 0)
     throw Error(fmt::format("load step {}: cell {} is inverted at the start of the step", step, st0.inverted_cell),
                 ErrorKind::Numerical);
+  if (st0.folded_cell >= 0)
+    throw Error(fmt::format("load step {}: cell {} is folded (det F <= 0 at one of its nodes) at the start of the step",
+                            step, st0.folded_cell),
+                ErrorKind::Numerical);
+  // A folded cell (fem::InternalForceStatus) may be crossed by Newton's iterates, which
+  // leave it again on the way to a valid solution (measured on the frictional ironing at
+  // level 1: refusing folded iterates stopped the run at t = 1.18, where every converged
+  // state had det F >= 0.58 at every node), but a state that holds one is never accepted:
+  // the increment fails and is cut (before, such a state was converged to at t = 1.49, and
+  // Newton stalled in the next step on the contact projections of the looped facet).
+  int folded_cell = -1;
   double rnorm = free_norm(r.u), cnorm = l2_norm(r.c), c_reference = cnorm;
   res.initial_residual = res.reference_residual = res.final_residual = rnorm;
   auto finish = [&](NewtonReason why) {
@@ -490,8 +502,14 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
     const double tol = std::max(settings_.atol, settings_.rtol * res.reference_residual);
     const bool constraints_ok =
         states_checked && last_changes == 0 && cnorm <= std::max(settings_.atol, settings_.rtol * c_reference);
-    if (!pending && (it > 0 || rnorm <= settings_.atol) && constraints_ok && rnorm <= tol)
+    if (!pending && (it > 0 || rnorm <= settings_.atol) && constraints_ok && rnorm <= tol) {
+      if (folded_cell >= 0) {
+        res.detail = fmt::format("the residual converged at a state where cell {} is folded (det F <= 0 at one of "
+                                 "its nodes)", folded_cell);
+        return finish(NewtonReason::DivergedInvertedElement);
+      }
       return finish(rnorm <= settings_.atol ? NewtonReason::ConvergedAbsolute : NewtonReason::ConvergedRelative);
+    }
     if (it == settings_.max_iterations) {
       res.detail = fmt::format("{} iterations, residual {:.3e} above tolerance {:.3e}", it, rnorm, tol);
       if (!lambda_.empty())
@@ -539,6 +557,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
       return finish(trial.failure);
     }
     const double alpha = trial.alpha;
+    folded_cell = trial.folded_cell;
     r = std::move(rt);
     ActiveSetMonitor::Verdict verdict = ActiveSetMonitor::Verdict::Continue;
     if (!lambda_.empty()) {

@@ -182,6 +182,7 @@ private:
     double alpha = 1;
     double assembly_seconds = 0;
     int inverted_cell = -1;
+    int folded_cell = -1;  // of the accepted trial state (fem::InternalForceStatus)
     bool failed = false;
     NewtonReason failure = NewtonReason::DivergedNaN;  // when failed
   };

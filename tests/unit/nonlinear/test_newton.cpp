@@ -117,6 +117,73 @@ TEST_P(MixedTangent, MatchesFiniteDifferencesAndIsSymmetric) {
 
 INSTANTIATE_TEST_SUITE_P(Dimensions, MixedTangent, ::testing::Values(2, 3));
 
+// One P2 triangle (0,0), (1,0), (0,1) whose bottom edge curves back on itself: its
+// hierarchical edge coefficient (-0.4, 0) gives det F = 1 + 4 (-0.4) = -0.6 at vertex 0,
+// and 0.2, 1.8, 1 at the three points of the degree-2 rule. A finite-strain law reports
+// the cell as folded (not inverted: the energy is defined at the quadrature points); at
+// half that coefficient (det F = 0.2 at vertex 0) it is neither.
+TEST(Assembly, ReportsAQuadraticCellFoldedBetweenItsQuadraturePoints) {
+  mesh::Mesh m;
+  m.dim = 2;
+  m.coords = {0, 0, 1, 0, 0, 1};
+  m.cells = {0, 1, 2};
+  m.cell_tags = {0};
+  const fem::FieldSpace space(m, BasisKind::P2Hierarchical);
+  ASSERT_EQ(space.n_nodes(), 6);
+  const int edge01 = space.n_vertices() + space.edges().find(0, 1);
+  materials::NeoHookean law(10.0, 0.3);
+  const std::vector<const materials::Material*> mats{&law};
+  std::vector<double> u(space.n_dofs(), 0.0), r(space.n_dofs(), 0.0);
+  u[static_cast<size_t>(edge01) * 2] = -0.4;
+  const fem::InternalForceStatus folded = fem::assemble_internal(space, mats, u, &r, nullptr);
+  EXPECT_EQ(folded.folded_cell, 0);
+  EXPECT_LT(folded.inverted_cell, 0);
+  u[static_cast<size_t>(edge01) * 2] = -0.2;
+  const fem::InternalForceStatus valid = fem::assemble_internal(space, mats, u, &r, nullptr);
+  EXPECT_LT(valid.folded_cell, 0);
+  EXPECT_LT(valid.inverted_cell, 0);
+}
+
+// The same triangle with every node prescribed, u = t (-1.6 x (1 - x - y), 0): its edge
+// coefficients are t (-0.4, 0) on the bottom edge and zero elsewhere, so the cell folds past
+// t = 0.625 (det F = 1 - 1.6 t at vertex 0) while every residual row is prescribed and
+// satisfied. Newton may not accept the folded state: the step to t = 1 fails, named, after
+// its cut-backs, and the valid state at t = 0.5 converges.
+TEST(Newton, NeverAcceptsAFoldedCell) {
+  mesh::Mesh m;
+  m.dim = 2;
+  m.coords = {0, 0, 1, 0, 0, 1};
+  m.cells = {0, 1, 2};
+  m.cell_tags = {0};
+  m.facets = {0, 1, 1, 2, 2, 0};
+  m.facet_tags = {1, 1, 1};
+  const fem::FieldSpace space(m, BasisKind::P2Hierarchical);
+  materials::NeoHookean law(10.0, 0.3);
+  ElasticityProblem p;
+  p.space = &space;
+  p.cell_material = {&law};
+  p.step_times = {0.0, 0.5, 1.0};
+  p.dirichlet.push_back({"all", 1, {0, 1}, [](const double* X, double t, double* u) {
+                           u[0] = -1.6 * t * X[0] * (1 - X[0] - X[1]);
+                           u[1] = 0;
+                         }});
+  // UMFPACK: MUMPS's PORD ordering aborts the process on a 12-unknown system.
+  auto solver = solvers::create_solver("lu-umfpack", PETSC_COMM_WORLD);
+  QuasiStaticSolver newton(PETSC_COMM_WORLD, p, NewtonSettings{}, *solver);
+  std::vector<StepResult> attempts;
+  newton.run([&](const StepResult& r) { attempts.push_back(r); });
+  ASSERT_GE(attempts.size(), 2u);
+  EXPECT_TRUE(attempts.front().converged());  // t = 0.5
+  EXPECT_EQ(attempts.front().time, 0.5);
+  EXPECT_EQ(attempts.back().reason, NewtonReason::DivergedInvertedElement);
+  EXPECT_NE(attempts.back().detail.find("cell 0 is folded"), std::string::npos) << attempts.back().detail;
+  for (const auto& a : attempts) {
+    if (a.converged()) {
+      EXPECT_LE(a.time, 0.625) << "a folded state was accepted";
+    }
+  }
+}
+
 // Uniaxial stretch with rollers: the exact solution is homogeneous, F = diag(1+d, s, s)
 // (3D) or diag(1+d, s) with F33 = 1 (plane strain), where the lateral stretch s makes the
 // lateral stress vanish. It lies in the discrete space, so Newton must find it to
