@@ -109,7 +109,13 @@ void HierarchicalPreconditioner::setup(Mat A, IS linear, IS quadratic, MatNullSp
 }
 
 void HierarchicalPreconditioner::release() {
-  STICTION_PETSC(KSPReset(ksp_ll_));
+  // The linear block's solver is made afresh rather than reset: PETSc 3.18's GAMG, after
+  // KSPReset, keeps its coarse levels' operators and refuses the next set-up once the new
+  // A_ll aggregates to other sizes ("Cannot change local size of Amat after use": schur-gamg
+  // on ironing-2d, the third load step).
+  const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(ksp_ll_.get()));
+  STICTION_PETSC(KSPCreate(comm, ksp_ll_.out()));
+  STICTION_PETSC(KSPSetOptionsPrefix(ksp_ll_, (prefix_ + "ll_").c_str()));
   STICTION_PETSC(KSPReset(ksp_qq_));
   A_ll_.reset(), A_lq_.reset(), A_ql_.reset(), A_qq_.reset();
   pattern_ = {};

@@ -38,8 +38,10 @@ std::string compact_options(const std::string& name) {
   return out;
 }
 
-// An options file's text with each "@include <name>" line replaced by the text of the
-// embedded file <name>.opts (the parts several backends share), recursively.
+// An options file's text with each "@include <name> [<key prefix>]" line replaced by the
+// text of the embedded file <name>.opts (the parts several backends share), recursively;
+// with a key prefix ("ll_"), every option of the included text gets it ("-pc_type" becomes
+// "-ll_pc_type"), so one set of settings serves a whole system and an inner block.
 std::string default_options(const std::string& name) {
   const auto& all = embedded_options();
   auto it = all.find(name);
@@ -52,9 +54,13 @@ std::string default_options(const std::string& name) {
       out += line + "\n";
       continue;
     }
-    const std::string part = line.substr(directive.size());
+    std::istringstream words(line.substr(directive.size()));
+    std::string part, key_prefix;
+    words >> part >> key_prefix;
     if (!all.count(part)) throw Error(fmt::format("options file '{}': no embedded options '{}' to include", name, part), ErrorKind::Internal);
-    out += default_options(part);
+    std::istringstream included(default_options(part));
+    while (std::getline(included, line))
+      out += (line.rfind('-', 0) == 0 ? "-" + key_prefix + line.substr(1) : line) + "\n";
   }
   return out;
 }

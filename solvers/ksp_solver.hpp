@@ -49,6 +49,8 @@ protected:
   // or empty. A reason is reported by solve() as a failed set-up.
   virtual std::string refuse_setup(const nonlinear::NewtonSystem& system) { return {}; }
   KSP ksp() const { return ksp_; }
+  // Whether the last setup() built the preconditioner (collect_setup_figures runs either way).
+  bool setup_succeeded() const { return setup_failure_.empty(); }
 
 private:
   struct StagnationTest;

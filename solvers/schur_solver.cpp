@@ -50,7 +50,8 @@ void SchurSolver::collect_setup_figures(std::map<std::string, double>& extra) co
   extra["memory_block_copies_MB"] = hp_.copied_blocks_mb() + (mhp_ ? mhp_->copied_blocks_mb() : 0.0) +
                                     (contact_ ? contact_->copied_blocks_mb() : 0.0);
   add_mumps_figures(hp_.linear_solver(), "ll_", extra);
-  const double c = parse_operator_complexity(setup_output());
+  double c = parse_operator_complexity(setup_output());  // BoomerAMG prints it
+  if (!(c > 0)) c = mg_operator_complexity(hp_.linear_solver());  // GAMG is asked
   if (c > 0) extra["amg_operator_complexity"] = c;
   if (contact_) {
     extra["contact_schur_scale"] = contact_->scale();
@@ -80,6 +81,10 @@ std::unique_ptr<nonlinear::LinearSolver> make_schur_lu(MPI_Comm comm) {
 
 std::unique_ptr<nonlinear::LinearSolver> make_schur_amg(MPI_Comm comm) {
   return std::make_unique<SchurSolver>("schur-amg", comm);
+}
+
+std::unique_ptr<nonlinear::LinearSolver> make_schur_gamg(MPI_Comm comm) {
+  return std::make_unique<SchurSolver>("schur-gamg", comm);
 }
 
 }  // namespace stiction::solvers

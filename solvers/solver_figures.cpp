@@ -27,6 +27,22 @@ void add_mumps_figures(KSP ksp, const std::string& key_prefix, std::map<std::str
   if (!MatMumpsGetInfog(F, 22, &mem)) extra[key_prefix + "mumps_memory_MB"] = static_cast<double>(mem);
   if (!MatMumpsGetInfog(F, 7, &ordering)) extra[key_prefix + "mumps_ordering"] = static_cast<double>(ordering);
   if (!MatMumpsGetRinfog(F, 3, &flops)) extra[key_prefix + "mumps_factor_flops"] = flops;
+  // MUMPS gives a count above 2^31 as minus the count in millions.
+  auto entries = [](PetscInt v) { return v < 0 ? -1e6 * static_cast<double>(v) : static_cast<double>(v); };
+  PetscInt stored = 0, compressed = 0, full_rank = 0;
+  if (!MatMumpsGetInfog(F, 29, &stored) && !MatMumpsGetInfog(F, 35, &compressed))
+    extra[key_prefix + "mumps_factor_entries"] = entries(compressed != 0 ? compressed : stored);
+  if (!MatMumpsGetInfog(F, 20, &full_rank)) extra[key_prefix + "mumps_factor_entries_full_rank"] = entries(full_rank);
+}
+
+double mg_operator_complexity(KSP ksp) {
+  PC pc;
+  PetscBool mg = PETSC_FALSE;
+  if (KSPGetPC(ksp, &pc) || PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(pc), &mg, PCMG, PCGAMG, "") || !mg)
+    return 0;
+  PetscReal grid = 0, op = 0;
+  if (PCMGGetGridComplexity(pc, &grid, &op)) return 0;
+  return op;
 }
 
 double heap_in_use_mb() {

@@ -8,9 +8,15 @@
 namespace stiction::solvers {
 
 // MUMPS's own figures for a KSP whose PC is an LU/Cholesky factorisation by MUMPS:
-// INFOG(22) memory effectively used (MB), INFOG(7) ordering used, RINFOG(3) flops.
+// INFOG(22) memory effectively used (MB), INFOG(7) ordering used, RINFOG(3) flops, and the
+// entries of the factors, as stored (INFOG(35), after block low-rank compression; INFOG(29)
+// where that is not reported) and as the analysis estimated them at full rank (INFOG(20)):
+// their ratio is the BLR compression rate, the full-rank count the fill of the ordering.
 // Keys get `key_prefix` ("" or "ll_"). Does nothing for other PCs.
 void add_mumps_figures(KSP ksp, const std::string& key_prefix, std::map<std::string, double>& extra);
+// Operator complexity (sum of the levels' nonzeros over the finest level's) of a KSP whose
+// PC is PCMG or PCGAMG; 0 for other PCs or before set-up.
+double mg_operator_complexity(KSP ksp);
 // Bytes the allocator has handed out and not taken back (glibc mallinfo2), in MB: what
 // PETSc, hypre, MUMPS and stiction hold on the heap now. Differences around a set-up or a
 // solve say what that step kept.

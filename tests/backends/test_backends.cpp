@@ -140,9 +140,17 @@ bool expect_same_solution(const std::string& scene_name, const std::string& back
   //     multiplier rows), on most contact scenes;
   //   * ilu-gmres, ILU(0) in GMRES(100): out of iterations on the thin 3D tubes (step 1) and
   //     on the frictional ironing's first sliding step (step 11).
+  // Backends made for one kind of system refuse the other kind at set-up and say why: gamg
+  // every system with a multiplier block (a saddle point), fieldsplit-schur every system
+  // without a block to split off (none of these scenes has a pressure field).
+  const bool refused = (backend == "gamg" && ref.contact) || (backend == "fieldsplit-schur" && !ref.contact);
+  if (refused) {
+    EXPECT_NE(r.failure.find("PC_SETUP_FAILED (" + backend), std::string::npos) << r.failure;
+    return false;
+  }
   const bool known_to_stop =
-      ref.contact && (backend == "boomeramg" || (backend == "ilu-gmres" && (scene_name == "crossed-tubes-3d" ||
-                                                                              scene_name == "ironing-2d")));
+      ref.contact && (backend == "boomeramg" ||
+                      (backend == "ilu-gmres" && (scene_name == "crossed-tubes-3d" || scene_name == "ironing-2d")));
   if (known_to_stop && !r.failure.empty()) {
     EXPECT_NE(r.failure.find("DIVERGED_LINEAR_SOLVE"), std::string::npos) << r.failure;
     std::printf("%s does not converge on this contact system: %s\n", backend.c_str(), r.failure.c_str());
@@ -187,9 +195,16 @@ TEST_P(EveryBackend, SameSolutionAsLuMumps) {
   ASSERT_TRUE(ref.failure.empty()) << ref.failure;
   const auto backends = available_backends();
   ASSERT_GE(backends.size(), 2u);
+  // Two backends are left out on the largest scene to hold the suite's time (level 0 --quick,
+  // measured with the other core busy: lu-mumps-blr 197 s, fieldsplit-schur 201 s, against
+  // 71 s for schur-amg): they are compared on the twelve other scenes, and the iteration
+  // baseline guards their block-strips counts.
+  const auto skipped_here = [&](const std::string& backend) {
+    return scene_name == "block-strips" && (backend == "lu-mumps-blr" || backend == "fieldsplit-schur");
+  };
   int compared = 0;
   for (const auto& backend : backends)
-    if (backend != "lu-mumps") compared += expect_same_solution(scene_name, backend, ref);
+    if (backend != "lu-mumps" && !skipped_here(backend)) compared += expect_same_solution(scene_name, backend, ref);
   // lu-umfpack at least (an exact factorisation, on the reference's load path) is compared.
   EXPECT_GE(compared, 1);
 }
@@ -244,10 +259,11 @@ TEST(Registry, UnknownBackendListsTheValidNames) {
 }
 
 // The shared parts of the options files arrive in every backend that includes them: each
-// GMRES backend's defaults carry the refined Gram-Schmidt and the common tolerance, both
-// Schur backends the quadratic-level sweep, and no "@include" line is left for PETSc.
+// GMRES backend's defaults carry the refined Gram-Schmidt and the common tolerance, every
+// Schur backend the quadratic-level sweep, and no "@include" line is left for PETSc.
 TEST(Registry, DefaultOptionsExpandTheirSharedParts) {
-  for (const char* name : {"boomeramg", "ilu-gmres", "schur-amg", "schur-lu"}) {
+  for (const char* name :
+       {"boomeramg", "fieldsplit-schur", "gamg", "ilu-gmres", "lu-mumps-blr", "schur-amg", "schur-gamg", "schur-lu"}) {
     const std::string opts = solvers::default_options(name);
     EXPECT_NE(opts.find("-ksp_gmres_cgs_refinement_type refine_ifneeded\n"), std::string::npos) << name;
     EXPECT_NE(opts.find("-ksp_rtol 1e-4\n"), std::string::npos) << name;
@@ -256,6 +272,13 @@ TEST(Registry, DefaultOptionsExpandTheirSharedParts) {
     EXPECT_EQ(opts.find("-qq_pc_type sor\n") != std::string::npos, schur) << name;
   }
   EXPECT_EQ(solvers::compact_options("schur-lu").find("@include"), std::string::npos);
+  // An include with a key prefix puts the AMG settings of the whole-system backends on the
+  // Schur backends' linear block.
+  EXPECT_NE(solvers::default_options("boomeramg").find("\n-pc_hypre_boomeramg_nodal_coarsen 4\n"), std::string::npos);
+  EXPECT_NE(solvers::default_options("schur-amg").find("\n-ll_pc_hypre_boomeramg_nodal_coarsen 4\n"), std::string::npos);
+  EXPECT_NE(solvers::default_options("gamg").find("\n-pc_type gamg\n"), std::string::npos);
+  EXPECT_NE(solvers::default_options("schur-gamg").find("\n-ll_pc_type gamg\n"), std::string::npos);
+  EXPECT_EQ(solvers::default_options("schur-gamg").find("\n-pc_type gamg\n"), std::string::npos);
 }
 
 }  // namespace
