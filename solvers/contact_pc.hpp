@@ -38,7 +38,12 @@
 // fractional G can, and its counts stay flat under refinement (hertz-cylinder-2d 15.0 / 15.2
 // / 15.4 with the full form; reports/contact-levels-0-2/).
 //
-// -<prefix>contact_fact picks the factorisation (PETSc's names for fieldsplit's):
+// -<prefix>contact_fact picks the factorisation; it is PCFIELDSPLIT's
+// -pc_fieldsplit_schur_fact_type with the same names and meaning. The level could be
+// written as a PETSc Schur split (the displacement split's KSP a PCSHELL running HP / MHP,
+// S~ given by PCFieldSplitSetSchurPre): it is kept by hand because PCFIELDSPLIT extracts
+// the displacement block, nearly the whole Newton matrix, as a copy, where this level reads
+// it in place. The fieldsplit-schur backend is the PETSc-only version, measured beside it:
 //   full (the paper's (8) and (33)):
 //     y = P_A^-1 r_a;  x_lambda = S~^-1 (r_lambda - B2 y);  x_a = P_A^-1 (r_a - B1 x_lambda)
 //   upper (default): x_lambda = S~^-1 r_lambda;  x_a = P_A^-1 (r_a - B1 x_lambda)

@@ -10,6 +10,12 @@
 // Form Full, the four-factor inverse (8) with A^-1 -> A_ll^-1:
 //   y_l = A_ll^-1 r_l,  x_q = S~^-1 (r_q - A_ql y_l),  x_l = A_ll^-1 (r_l - A_lq x_q)
 // With exact sub-solves and S~ = S, Full is the exact inverse (tests/backends).
+// PETSc has both forms: Lower is PCFIELDSPLIT of type multiplicative over (u_l, u_q) with
+// the qq split's operator replaced by S~ (block Gauss-Seidel), Full is PCFIELDSPLIT of type
+// schur with -pc_fieldsplit_schur_fact_type full and a user Schur operator. They are kept
+// here because S~ is the paper's (A_qq, or its SOR sweep, not an assembled selfp) and the
+// blocks are views of the Newton matrix (PCFIELDSPLIT copies every block); the generic
+// PETSc split over the whole displacement is the fieldsplit-schur backend.
 //
 // A_ll^-1 and S~^-1 are inner KSPs with their own option prefixes (<prefix>ll_, <prefix>qq_):
 // the paper's choices are a direct solve (or one AMG V-cycle) on A_ll and one SSOR sweep
