@@ -117,17 +117,25 @@ TEST_P(MixedTangent, MatchesFiniteDifferencesAndIsSymmetric) {
 
 INSTANTIATE_TEST_SUITE_P(Dimensions, MixedTangent, ::testing::Values(2, 3));
 
+// The reference triangle (0,0), (1,0), (0,1) as a mesh, its three sides tagged 1.
+mesh::Mesh reference_triangle() {
+  mesh::Mesh m;
+  m.dim = 2;
+  m.coords = {0, 0, 1, 0, 0, 1};
+  m.cells = {0, 1, 2};
+  m.cell_tags = {0};
+  m.facets = {0, 1, 1, 2, 2, 0};
+  m.facet_tags = {1, 1, 1};
+  return m;
+}
+
 // One P2 triangle (0,0), (1,0), (0,1) whose bottom edge curves back on itself: its
 // hierarchical edge coefficient (-0.4, 0) gives det F = 1 + 4 (-0.4) = -0.6 at vertex 0,
 // and 0.2, 1.8, 1 at the three points of the degree-2 rule. A finite-strain law reports
 // the cell as folded (not inverted: the energy is defined at the quadrature points); at
 // half that coefficient (det F = 0.2 at vertex 0) it is neither.
 TEST(Assembly, ReportsAQuadraticCellFoldedBetweenItsQuadraturePoints) {
-  mesh::Mesh m;
-  m.dim = 2;
-  m.coords = {0, 0, 1, 0, 0, 1};
-  m.cells = {0, 1, 2};
-  m.cell_tags = {0};
+  const mesh::Mesh m = reference_triangle();
   const fem::FieldSpace space(m, BasisKind::P2Hierarchical);
   ASSERT_EQ(space.n_nodes(), 6);
   const int edge01 = space.n_vertices() + space.edges().find(0, 1);
@@ -150,13 +158,7 @@ TEST(Assembly, ReportsAQuadraticCellFoldedBetweenItsQuadraturePoints) {
 // satisfied. Newton may not accept the folded state: the step to t = 1 fails, named, after
 // its cut-backs, and the valid state at t = 0.5 converges.
 TEST(Newton, NeverAcceptsAFoldedCell) {
-  mesh::Mesh m;
-  m.dim = 2;
-  m.coords = {0, 0, 1, 0, 0, 1};
-  m.cells = {0, 1, 2};
-  m.cell_tags = {0};
-  m.facets = {0, 1, 1, 2, 2, 0};
-  m.facet_tags = {1, 1, 1};
+  const mesh::Mesh m = reference_triangle();
   const fem::FieldSpace space(m, BasisKind::P2Hierarchical);
   materials::NeoHookean law(10.0, 0.3);
   ElasticityProblem p;
