@@ -47,13 +47,17 @@ PetscErrorCode shell_apply(PC pc, Vec r, Vec x) {
   return 0;
 }
 
+// A fresh inner solver under the options prefix <prefix><block>_.
+void create_block_solver(MPI_Comm comm, const std::string& prefix, const char* block, PetscKSP& ksp) {
+  STICTION_PETSC(KSPCreate(comm, ksp.out()));
+  STICTION_PETSC(KSPSetOptionsPrefix(ksp, (prefix + block + "_").c_str()));
+}
+
 }  // namespace
 
 HierarchicalPreconditioner::HierarchicalPreconditioner(MPI_Comm comm, const std::string& prefix) : prefix_(prefix) {
-  STICTION_PETSC(KSPCreate(comm, ksp_ll_.out()));
-  STICTION_PETSC(KSPSetOptionsPrefix(ksp_ll_, (prefix + "ll_").c_str()));
-  STICTION_PETSC(KSPCreate(comm, ksp_qq_.out()));
-  STICTION_PETSC(KSPSetOptionsPrefix(ksp_qq_, (prefix + "qq_").c_str()));
+  create_block_solver(comm, prefix, "ll", ksp_ll_);
+  create_block_solver(comm, prefix, "qq", ksp_qq_);
 }
 
 void HierarchicalPreconditioner::setup(Mat A, IS linear, IS quadratic, MatNullSpace near_null_space, int block_size) {
@@ -113,9 +117,7 @@ void HierarchicalPreconditioner::release() {
   // KSPReset, keeps its coarse levels' operators and refuses the next set-up once the new
   // A_ll aggregates to other sizes ("Cannot change local size of Amat after use": schur-gamg
   // on ironing-2d, the third load step).
-  const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(ksp_ll_.get()));
-  STICTION_PETSC(KSPCreate(comm, ksp_ll_.out()));
-  STICTION_PETSC(KSPSetOptionsPrefix(ksp_ll_, (prefix_ + "ll_").c_str()));
+  create_block_solver(PetscObjectComm(reinterpret_cast<PetscObject>(ksp_ll_.get())), prefix_, "ll", ksp_ll_);
   STICTION_PETSC(KSPReset(ksp_qq_));
   A_ll_.reset(), A_lq_.reset(), A_ql_.reset(), A_qq_.reset();
   pattern_ = {};
