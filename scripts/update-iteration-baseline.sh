@@ -1,14 +1,18 @@
 #!/usr/bin/env bash
 # Rewrites tests/regression/iterations.csv from a fresh level-0 sweep (short versions, --quick) of every built-in
-# scene with every available backend but lu-umfpack (kBackendsOutsideTheBaseline in
-# tests/regression/test_iteration_baseline.cpp says why). Run it on purpose (a change that lowers counts, a new scene or
-# backend), review the diff, and commit it with the reason in the message.
+# scene with every available backend but the pairs tests/regression/outside-baseline.csv leaves out (with
+# its reasons). Run it on purpose (a change that lowers counts, a new scene or backend), review the diff,
+# and commit it with the reason in the message.
 set -euo pipefail
 build=${1:-build}
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-solvers=$("$build/stiction" solvers | awk '$2 == "available" && $1 != "lu-umfpack" { print $1 }' | paste -sd,)
+outside=tests/regression/outside-baseline.csv
+# Backends left out on every scene ("*") are not run at all; the other pairs are dropped below.
+solvers=$("$build/stiction" solvers | awk -F, -v outside="$outside" '
+  BEGIN { while ((getline line < outside) > 0) { split(line, f, ","); if (f[1] == "*") skip[f[2]] = 1 } FS = " " }
+  $2 == "available" && !($1 in skip) { print $1 }' | paste -sd,)
 # BASELINE_JOBS sweeps side by side (default 2, one per core), the scenes dealt round-robin;
 # the counts do not depend on how the scenes are grouped.
 jobs=${BASELINE_JOBS:-2}
@@ -34,8 +38,11 @@ out=tests/regression/iterations.csv
   echo "# the test then expects the same status and compares no counts."
   echo "scene,solver,status,newton_iterations,krylov_iterations"
   # Columns by name (runs.csv gains columns over time), each sweep's header read from its own file.
-  awk -F, '/^#/ { next } !(FILENAME in header) { for (i = 1; i <= NF; i++) col[$i] = i; header[FILENAME] = 1; next }
-           { print $col["scene"] "," $col["solver"] "," $col["status"] "," $col["newton_iterations"] "," \
+  awk -F, -v outside="$outside" '
+    BEGIN { while ((getline line < outside) > 0) { split(line, f, ","); out[f[1] "," f[2]] = 1 } }
+    /^#/ { next } !(FILENAME in header) { for (i = 1; i <= NF; i++) col[$i] = i; header[FILENAME] = 1; next }
+    (($col["scene"] "," $col["solver"]) in out) { next }
+    { print $col["scene"] "," $col["solver"] "," $col["status"] "," $col["newton_iterations"] "," \
                    $col["krylov_iterations"] }' "$tmp"/sweep-*/runs.csv | sort -t, -k1,1 -k2,2
 } > "$out"
 echo "wrote $out" >&2
