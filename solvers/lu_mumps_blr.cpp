@@ -3,28 +3,15 @@
 // tolerance as every other Krylov backend (options/lu-mumps-blr.opts). The compression
 // tolerance is the backend's cheapening knob: -lu_mumps_blr_mat_mumps_cntl_7 <eps>.
 // Run rows carry MUMPS's memory and the factor entries after compression against the
-// full-rank estimate of the analysis (solver_figures.hpp: add_mumps_figures).
-#include "ksp_solver.hpp"
-#include "solver_figures.hpp"
+// full-rank estimate of the analysis (solver_figures.hpp: add_mumps_figures); a
+// factorisation that would not fit in the run's memory limit, by MUMPS's estimate with
+// compressed factors, is refused (mumps_lu_solver.hpp).
+#include "mumps_lu_solver.hpp"
 
 namespace stiction::solvers {
 
-namespace {
-
-class LuMumpsBlr final : public KspSolver {
-public:
-  explicit LuMumpsBlr(MPI_Comm comm) : KspSolver("lu-mumps-blr", comm) {}
-
-protected:
-  void collect_setup_figures(std::map<std::string, double>& extra) const override {
-    add_mumps_figures(ksp(), "", extra);
-  }
-};
-
-}  // namespace
-
 std::unique_ptr<nonlinear::LinearSolver> make_lu_mumps_blr(MPI_Comm comm) {
-  return std::make_unique<LuMumpsBlr>(comm);
+  return std::make_unique<MumpsLuSolver>("lu-mumps-blr", comm);
 }
 
 }  // namespace stiction::solvers
