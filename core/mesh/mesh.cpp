@@ -1,6 +1,7 @@
 #include "mesh/mesh.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -117,6 +118,14 @@ void check_validity(const Mesh& mesh, const std::string& what) {
     throw Error(fmt::format("{}: {} element {} (signed measure {:.3g}) with vertices{}", what,
                             m < 0 ? "inverted" : "degenerate", c, m, xs));
   }
+}
+
+std::string describe_cell(const Mesh& mesh, int c) {
+  std::array<double, 3> centroid{};
+  for (int k = 0; k < mesh.vertices_per_cell(); ++k)
+    for (int i = 0; i < mesh.dim; ++i) centroid[i] += mesh.vertex(mesh.cell(c)[k])[i] / mesh.vertices_per_cell();
+  return fmt::format("cell {} (vertex centroid ({:.4g}))", c,
+                     fmt::join(centroid.begin(), centroid.begin() + mesh.dim, ", "));
 }
 
 namespace {

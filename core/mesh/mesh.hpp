@@ -31,6 +31,10 @@ struct Mesh {
   const int* facet(int f) const { return facets.data() + static_cast<size_t>(f) * dim; }
 };
 
+// "cell 14090 (vertex centroid (3.41, 3.98))": a cell named so that a user can find it in
+// the reference configuration of the mesh (messages about inverted or folded cells).
+std::string describe_cell(const Mesh& mesh, int c);
+
 // Local edges of the reference simplex, in VTK's order for quadratic cells
 // (tetra: 01 12 20 03 13 23; triangle: 01 12 20) so output needs no permutation.
 template <int D>

@@ -441,11 +441,11 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
   const auto st0 = evaluate(t, u_, lambda_, r, true);
   double asm_seconds = seconds_since(t0);
   if (st0.inverted_cell >= 0)
-    throw Error(fmt::format("load step {}: cell {} is inverted at the start of the step", step, st0.inverted_cell),
+    throw Error(fmt::format("load step {}: {} is inverted at the start of the step", step, describe_cell(st0.inverted_cell)),
                 ErrorKind::Numerical);
   if (st0.folded_cell >= 0)
-    throw Error(fmt::format("load step {}: cell {} is folded (det F <= 0 at one of its nodes) at the start of the step",
-                            step, st0.folded_cell),
+    throw Error(fmt::format("load step {}: {} is folded (det F <= 0 at one of its nodes) at the start of the step",
+                            step, describe_cell(st0.folded_cell)),
                 ErrorKind::Numerical);
   // A folded cell (fem::InternalForceStatus) may be crossed by Newton's iterates, which
   // leave it again on the way to a valid solution (measured on the frictional ironing at
@@ -504,8 +504,8 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
         states_checked && last_changes == 0 && cnorm <= std::max(settings_.atol, settings_.rtol * c_reference);
     if (!pending && (it > 0 || rnorm <= settings_.atol) && constraints_ok && rnorm <= tol) {
       if (folded_cell >= 0) {
-        res.detail = fmt::format("the residual converged at a state where cell {} is folded (det F <= 0 at one of "
-                                 "its nodes)", folded_cell);
+        res.detail = fmt::format("the residual converged at a state where {} is folded (det F <= 0 at one of "
+                                 "its nodes)", describe_cell(folded_cell));
         return finish(NewtonReason::DivergedInvertedElement);
       }
       return finish(rnorm <= settings_.atol ? NewtonReason::ConvergedAbsolute : NewtonReason::ConvergedRelative);
@@ -552,8 +552,8 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
       res.iterations.push_back(rec);
       res.detail = trial.failure == NewtonReason::DivergedNaN
                        ? "the residual is not finite after every step reduction"
-                       : fmt::format("cell {} inverts (det F <= 0) even after {} step halvings", trial.inverted_cell,
-                                     settings_.max_backtracks);
+                       : fmt::format("{} inverts (det F <= 0) even after {} step halvings",
+                                     describe_cell(trial.inverted_cell), settings_.max_backtracks);
       return finish(trial.failure);
     }
     const double alpha = trial.alpha;

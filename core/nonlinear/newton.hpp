@@ -192,6 +192,7 @@ private:
   TrialStep take_step(double t, const std::vector<double>& dv, const std::vector<double>& dl, Residuals& rt);
   double contact_force_norm(const Residuals& r) const;
   std::vector<char> constraint_states() const;
+  std::string describe_cell(int c) const { return mesh::describe_cell(problem_.space->mesh(), c); }
   double free_norm(const std::vector<double>& r) const;
   std::map<std::string, std::array<double, 3>> reactions(const std::vector<double>& r) const;
   std::map<std::string, std::array<double, 3>> surface_forces() const;

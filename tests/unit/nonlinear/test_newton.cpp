@@ -155,8 +155,8 @@ TEST(Assembly, ReportsAQuadraticCellFoldedBetweenItsQuadraturePoints) {
 // The same triangle with every node prescribed, u = t (-1.6 x (1 - x - y), 0): its edge
 // coefficients are t (-0.4, 0) on the bottom edge and zero elsewhere, so the cell folds past
 // t = 0.625 (det F = 1 - 1.6 t at vertex 0) while every residual row is prescribed and
-// satisfied. Newton may not accept the folded state: the step to t = 1 fails, named, after
-// its cut-backs, and the valid state at t = 0.5 converges.
+// satisfied. Newton may not accept the folded state: the step to t = 1 fails, named (the
+// cell and where it is), after its cut-backs, and the valid state at t = 0.5 converges.
 TEST(Newton, NeverAcceptsAFoldedCell) {
   const mesh::Mesh m = reference_triangle();
   const fem::FieldSpace space(m, BasisKind::P2Hierarchical);
@@ -178,7 +178,9 @@ TEST(Newton, NeverAcceptsAFoldedCell) {
   EXPECT_TRUE(attempts.front().converged());  // t = 0.5
   EXPECT_EQ(attempts.front().time, 0.5);
   EXPECT_EQ(attempts.back().reason, NewtonReason::DivergedInvertedElement);
-  EXPECT_NE(attempts.back().detail.find("cell 0 is folded"), std::string::npos) << attempts.back().detail;
+  // The message names the cell and where it is (its vertex centroid, reference configuration).
+  EXPECT_NE(attempts.back().detail.find("cell 0 (vertex centroid (0.3333, 0.3333)) is folded"), std::string::npos)
+      << attempts.back().detail;
   for (const auto& a : attempts) {
     if (a.converged()) {
       EXPECT_LE(a.time, 0.625) << "a folded state was accepted";
