@@ -12,6 +12,7 @@
 // users' guide). The analysis is repeated by the factorisation itself, once per run.
 #include <map>
 #include <string>
+#include <utility>
 
 #include "ksp_solver.hpp"
 

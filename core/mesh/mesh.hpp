@@ -31,7 +31,7 @@ struct Mesh {
   const int* facet(int f) const { return facets.data() + static_cast<size_t>(f) * dim; }
 };
 
-// "cell 14090 (vertex centroid (3.41, 3.98))": a cell named so that a user can find it in
+// "cell 14090 (vertex centroid (2.862, 3.993))": a cell named so that a user can find it in
 // the reference configuration of the mesh (messages about inverted or folded cells).
 std::string describe_cell(const Mesh& mesh, int c);
 
