@@ -11,10 +11,11 @@ export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
 if grep -qw avx2 /proc/cpuinfo 2>/dev/null; then export OPENBLAS_CORETYPE=${OPENBLAS_CORETYPE:-Haswell}; fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-outside=tests/regression/outside-baseline.csv
-# Backends left out on every scene ("*") are not run at all; the other pairs are dropped below.
-solvers=$("$build/stiction" solvers | awk -F, -v outside="$outside" '
-  BEGIN { while ((getline line < outside) > 0) { split(line, f, ","); if (f[1] == "*") skip[f[2]] = 1 } FS = " " }
+# The pairs left out, "scene,solver" separated by ";" (comments and header dropped). Backends
+# left out on every scene ("*") are not run at all; the other pairs are dropped below.
+outside=$(grep -v '^#' tests/regression/outside-baseline.csv | tail -n +2 | cut -d, -f1,2 | paste -sd';')
+solvers=$("$build/stiction" solvers | awk -v outside="$outside" '
+  BEGIN { n = split(outside, pairs, ";"); for (i = 1; i <= n; i++) if (pairs[i] ~ /^\*,/) skip[substr(pairs[i], 3)] = 1 }
   $2 == "available" && !($1 in skip) { print $1 }' | paste -sd,)
 # BASELINE_JOBS sweeps side by side (default 2, one per core), the scenes dealt round-robin;
 # the counts do not depend on how the scenes are grouped.
@@ -42,7 +43,7 @@ out=tests/regression/iterations.csv
   echo "scene,solver,status,newton_iterations,krylov_iterations"
   # Columns by name (runs.csv gains columns over time), each sweep's header read from its own file.
   awk -F, -v outside="$outside" '
-    BEGIN { while ((getline line < outside) > 0) { split(line, f, ","); out[f[1] "," f[2]] = 1 } }
+    BEGIN { n = split(outside, pairs, ";"); for (i = 1; i <= n; i++) out[pairs[i]] = 1 }
     /^#/ { next } !(FILENAME in header) { for (i = 1; i <= NF; i++) col[$i] = i; header[FILENAME] = 1; next }
     (($col["scene"] "," $col["solver"]) in out) { next }
     { print $col["scene"] "," $col["solver"] "," $col["status"] "," $col["newton_iterations"] "," \

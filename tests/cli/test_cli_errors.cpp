@@ -17,8 +17,8 @@
 #include <map>
 #include <regex>
 #include <sstream>
-#include <utility>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "builtin_scenes.hpp"
