@@ -25,6 +25,11 @@ struct SurfaceFacet {
   double E[2][3] = {{0, 0, 0}, {0, 0, 0}};
   double outward = 1;
   int node_of_vertex[3] = {-1, -1, -1};  // slave facets: multiplier node of each vertex
+  // Curved P2 facet: the reference position is the chord map plus sum_e offset_e N_e(eta)
+  // over its edge nodes (fem::FieldSpace::node_offset, in facet-node order after the
+  // vertices).
+  bool curved = false;
+  double offset[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
 };
 
 namespace facets {
@@ -68,14 +73,6 @@ typename Geometry<D>::Tangents reference_edges(const SurfaceFacet& f) {
   for (int k = 0; k < D - 1; ++k)
     for (int c = 0; c < D; ++c) E(c, k) = f.E[k][c];
   return E;
-}
-
-// Measure of the reference facet per unit reference-simplex measure: |E| in 2D, |E0 x E1|
-// in 3D (the reference triangle has area 1/2).
-template <int D>
-double reference_jacobian(const SurfaceFacet& f) {
-  const auto E = reference_edges<D>(f);
-  return std::sqrt((E.transpose() * E).determinant());
 }
 
 // The P1 hat of vertex k at eta (barycentric coordinates).
@@ -126,12 +123,23 @@ public:
     p.dx = E;
     for (auto& v2 : p.ddx) v2.setZero();
     for (int a = 0; a < n_; ++a) {
-      const typename G::Vec va = node_value(f, a, v);
+      typename G::Vec va = node_value(f, a, v);
+      if (f.curved && a >= f.n_vertices) va += offset_of(f, a);
       p.x += p.N[a] * va;
       for (int k = 0; k < P; ++k) p.dx.col(k) += p.dN[a * P + k] * va;
       for (int kl = 0; kl < P * P; ++kl) p.ddx[kl] += ddN_[a][kl] * va;
     }
     return p;
+  }
+  // Measure of the reference (undeformed) facet at p per unit reference-simplex measure:
+  // |E| in 2D, |E0 x E1| in 3D on a straight facet (the reference triangle has area 1/2),
+  // the isoparametric map's on a curved one.
+  double reference_measure(const SurfaceFacet& f, const FacetPoint<D>& p) const {
+    typename G::Tangents E = reference_edges<D>(f);
+    if (f.curved)
+      for (int a = f.n_vertices; a < n_; ++a)
+        for (int k = 0; k < P; ++k) E.col(k) += p.dN[a * P + k] * offset_of(f, a);
+    return std::sqrt((E.transpose() * E).determinant());
   }
   // sum_a N_a v_a at the point's shape values.
   typename G::Vec values(const SurfaceFacet& f, const FacetPoint<D>& p, const std::vector<double>& v) const {
@@ -150,6 +158,9 @@ public:
   }
 
 private:
+  static typename G::Vec offset_of(const SurfaceFacet& f, int a) {
+    return Eigen::Map<const typename G::Vec>(f.offset[a - f.n_vertices]);
+  }
   static typename G::Vec node_value(const SurfaceFacet& f, int a, const std::vector<double>& v) {
     const size_t k = static_cast<size_t>(f.nodes[a]) * D;
     return Eigen::Map<const typename G::Vec>(v.data() + k);

@@ -18,7 +18,8 @@ double SlaveSurface::local_size(int i) const {
 
 namespace {
 
-// K of one flat P1 facet with edge vectors E (d x (d-1)): the hats' surface gradients are
+// K of one flat P1 facet with edge vectors E (d x (d-1)), the chord of a curved one (K is a
+// preconditioner's surface Laplacian on the multiplier): the hats' surface gradients are
 // E (E^T E)^-1 e_j for the vertices 1..d-1 and minus their sum for vertex 0.
 void add_surface_stiffness(const Eigen::MatrixXd& E, double measure, const int* mult, SlaveSurface& s) {
   const int d = static_cast<int>(E.rows()), sd = static_cast<int>(E.cols());
@@ -87,12 +88,22 @@ SlaveSurface make_slave_surface(const fem::FieldSpace& space, int facet_tag, con
       fem::eval_shape(sd, space.kind(), xi, N.data(), dN.data());
       double phi[3] = {1, 0, 0};  // P1 hats: barycentric coordinates
       for (int j = 0; j < sd; ++j) phi[0] -= xi[j], phi[j + 1] = xi[j];
+      // The reference point and measure: chord map plus, on a curved P2 facet, its edge
+      // nodes' offsets (fem/cell_geometry.hpp).
       double X[3] = {0, 0, 0};
+      Eigen::MatrixXd J = E;
       for (int i = 0; i < d; ++i) {
         X[i] = X0[i];
         for (int j = 0; j < sd; ++j) X[i] += E(i, j) * xi[j];
       }
-      const double w = rule.weights[q] * measure;
+      for (int a = d; a < npf; ++a) {
+        const double* g = space.node_offset(nodes[a]);
+        for (int i = 0; i < d; ++i) {
+          X[i] += g[i] * N[a];
+          for (int j = 0; j < sd; ++j) J(i, j) += g[i] * dN[a * sd + j];
+        }
+      }
+      const double w = rule.weights[q] * std::sqrt((J.transpose() * J).determinant());
       for (int k = 0; k < d; ++k) {
         const int i = mult[k];
         s.lumped_mass[i] += w * phi[k];

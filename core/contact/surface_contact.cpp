@@ -90,6 +90,13 @@ std::vector<Facet> collect_facets(const fem::FieldSpace& space, int tag) {
       F.X0[c] = mesh.vertex(F.vertex[0])[c];
       for (int k = 0; k + 1 < d; ++k) F.E[k][c] = mesh.vertex(F.vertex[k + 1])[c] - F.X0[c];
     }
+    for (size_t a = d; a < F.nodes.size(); ++a) {
+      const double* g = space.node_offset(F.nodes[a]);
+      for (int c = 0; c < d; ++c) {
+        F.offset[a - d][c] = g[c];
+        F.curved = F.curved || g[c] != 0;
+      }
+    }
     opposite[key_of(F.vertex)] = -1;
     out.push_back(F);
   }
@@ -620,12 +627,12 @@ void SurfaceContact::kinematics(const std::vector<double>& u, const double* lamb
     } else if (tree.qbegin(bgi::intersects(near)) == tree.qend()) {
       continue;
     }
-    const double jacobian_f = facets::reference_jacobian<D>(f);
     const bool derive_f = facet_derives(f);
     for (const auto& [eta, weight] : integration_points<D>(ev, f, candidates, u)) {
       const PointKinematics<D> p =
           point_kinematics<D>(ev, f, eta, candidates, u, u_previous_, search_radius_, derive_f);
       if (p.branches.empty()) continue;
+      const double jacobian_f = ev.reference_measure(f, p.s);
       Vec3 lam_w = Vec3::Zero();
       for (int k = 0; k < D; ++k) {
         const int i = f.node_of_vertex[k];

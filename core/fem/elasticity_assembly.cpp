@@ -10,6 +10,7 @@
 
 #include "common/error.hpp"
 #include "common/petsc.hpp"
+#include "fem/cell_geometry.hpp"
 #include "fem/quadrature.hpp"
 
 namespace stiction::fem {
@@ -53,22 +54,6 @@ std::vector<double> gradients_at_nodes(int d, BasisKind kind) {
   return dN;
 }
 
-// Affine map of a cell: inverse Jacobian (dxi/dX) and |det|.
-template <int D>
-struct AffineCell {
-  Eigen::Matrix<double, D, D> inv;
-  double det;
-};
-
-template <int D>
-AffineCell<D> affine_cell(const mesh::Mesh& mesh, int c) {
-  Eigen::Matrix<double, D, D> J;
-  const int* v = mesh.cell(c);
-  for (int j = 0; j < D; ++j)
-    for (int i = 0; i < D; ++i) J(i, j) = mesh.vertex(v[j + 1])[i] - mesh.vertex(v[0])[i];
-  return {J.inverse(), J.determinant()};
-}
-
 // Physical gradients G (n x D) of the shape functions at one quadrature point.
 template <int D, int NB>
 void physical_gradients(const double* dNref, const Eigen::Matrix<double, D, D>& inv, double (&G)[NB][D]) {
@@ -106,6 +91,13 @@ void add_pressure_to_stress(const Mat3& G, double J, double p, Mat3& P, material
           (*A)[materials::tangent_index(i, Jx, k, L)] -= p * J * (G(i, Jx) * G(k, L) - G(i, L) * G(k, Jx));
 }
 
+// Cell c's map at a point where the space's reference gradients are dN (the chord map on a
+// straight cell, where dN does not matter).
+template <int D, int NB>
+CellMap<D> map_of_cell(const FieldSpace& space, int c, const int* nodes, const double* dN) {
+  return cell_map<D>(simplex_jacobian<D, D>(space, space.mesh().cell(c), nodes, NB, dN));
+}
+
 template <int D, int NB>
 InternalForceStatus internal_kernel(const FieldSpace& space, const std::vector<const materials::Material*>& mat,
                                     const std::vector<double>& u, std::vector<double>* residual, StiffnessMatrix* tangent) {
@@ -136,7 +128,8 @@ InternalForceStatus internal_kernel(const FieldSpace& space, const std::vector<c
       idx[ND + a] = space.pressure_dof(nodes[a]);
       pe[a] = u[idx[ND + a]];
     }
-    const AffineCell<D> geo = affine_cell<D>(mesh, c);
+    const bool curved = space.is_curved_cell(c);
+    CellMap<D> geo = map_of_cell<D, NB>(space, c, nodes, tab.dN.data());
     // A quadratic cell can fold at its boundary (an edge curving back on itself) while det F
     // stays positive at every quadrature point, and the degree-2 rule's energy does not see
     // the fold: measured on the frictional ironing at level 1, Newton converged at t = 1.49
@@ -146,7 +139,9 @@ InternalForceStatus internal_kernel(const FieldSpace& space, const std::vector<c
     // whole cell needs Bernstein coefficients of det F, Johnen, Remacle & Geuzaine 2013).
     if (NB > D + 1 && mat[c]->requires_positive_jacobian() && status.folded_cell < 0)
       for (int k = 0; k < NB; ++k) {
-        physical_gradients<D, NB>(&node_gradients[static_cast<size_t>(k) * NB * D], geo.inv, G);
+        const double* dN_k = &node_gradients[static_cast<size_t>(k) * NB * D];
+        if (curved) geo = map_of_cell<D, NB>(space, c, nodes, dN_k);
+        physical_gradients<D, NB>(dN_k, geo.inv, G);
         if (!(deformation_gradient<D, NB>(ue, G).determinant() > 0)) {
           status.folded_cell = c;
           break;
@@ -155,7 +150,9 @@ InternalForceStatus internal_kernel(const FieldSpace& space, const std::vector<c
     if (tangent) std::fill(Ke.begin(), Ke.begin() + m * m, 0.0);
     std::fill(re, re + m, 0.0);
     for (int q = 0; q < tab.rule.size(); ++q) {
-      physical_gradients<D, NB>(&tab.dN[static_cast<size_t>(q) * NB * D], geo.inv, G);
+      const double* dN_q = &tab.dN[static_cast<size_t>(q) * NB * D];
+      if (curved) geo = map_of_cell<D, NB>(space, c, nodes, dN_q);
+      physical_gradients<D, NB>(dN_q, geo.inv, G);
       const Mat3 F = deformation_gradient<D, NB>(ue, G);
       const double detF = F.determinant();
       if (!(detF > 0) && mat[c]->requires_positive_jacobian()) {
@@ -243,34 +240,38 @@ auto dispatch(const FieldSpace& space, F&& f) {
   throw Error(fmt::format("assembly: unsupported dimension {}", space.dim()), ErrorKind::Internal);
 }
 
-// Integrates residual -= int g(X) N_a over simplices of dimension sd given by vertex lists.
-void subtract_load(const FieldSpace& space, int sd, const std::vector<std::vector<int>>& simplex_nodes,
-                   const std::vector<const int*>& simplex_vertices, const VectorField& g,
-                   std::vector<double>& residual) {
-  const int d = space.dim();
-  const Tabulation tab = tabulate(sd, space.kind(), 4);
+// Integrates residual -= int g(X) N_a over simplices of dimension SD (cells or boundary
+// facets, curved where the space is) given by their nodes and vertices.
+template <int D, int SD>
+void subtract_load_on(const FieldSpace& space, const std::vector<std::vector<int>>& simplex_nodes,
+                      const std::vector<const int*>& simplex_vertices, const VectorField& g, std::vector<double>& residual) {
+  const Tabulation tab = tabulate(SD, space.kind(), 4);
   double X[3], val[3];
   for (size_t s = 0; s < simplex_nodes.size(); ++s) {
     const int* v = simplex_vertices[s];
-    const double* X0 = space.mesh().vertex(v[0]);
-    // Edge vectors of the simplex and its measure scale sqrt(det(E^T E)).
-    Eigen::MatrixXd E(d, sd);
-    for (int j = 0; j < sd; ++j)
-      for (int i = 0; i < d; ++i) E(i, j) = space.mesh().vertex(v[j + 1])[i] - X0[i];
-    const double scale = std::sqrt((E.transpose() * E).determinant());
+    const int* nodes = simplex_nodes[s].data();
     for (int q = 0; q < tab.rule.size(); ++q) {
-      const double* xi = tab.rule.point(q);
-      for (int i = 0; i < d; ++i) {
-        X[i] = X0[i];
-        for (int j = 0; j < sd; ++j) X[i] += E(i, j) * xi[j];
-      }
+      const double* N = &tab.N[static_cast<size_t>(q) * tab.n];
+      const auto J = simplex_jacobian<D, SD>(space, v, nodes, tab.n, &tab.dN[static_cast<size_t>(q) * tab.n * SD]);
+      simplex_position<D, SD>(space, v, nodes, tab.n, tab.rule.point(q), N, X);
       g(X, val);
-      const double w = tab.rule.weights[q] * scale;
+      const double w = tab.rule.weights[q] * measure_scale<D, SD>(J);
       for (int a = 0; a < tab.n; ++a)
-        for (int i = 0; i < d; ++i)
-          residual[static_cast<size_t>(simplex_nodes[s][a]) * d + i] -= w * tab.N[static_cast<size_t>(q) * tab.n + a] * val[i];
+        for (int i = 0; i < D; ++i) residual[static_cast<size_t>(nodes[a]) * D + i] -= w * N[a] * val[i];
     }
   }
+}
+
+void subtract_load(const FieldSpace& space, int sd, const std::vector<std::vector<int>>& simplex_nodes,
+                   const std::vector<const int*>& simplex_vertices, const VectorField& g,
+                   std::vector<double>& residual) {
+  switch (space.dim() * 10 + sd) {
+    case 21: return subtract_load_on<2, 1>(space, simplex_nodes, simplex_vertices, g, residual);
+    case 22: return subtract_load_on<2, 2>(space, simplex_nodes, simplex_vertices, g, residual);
+    case 32: return subtract_load_on<3, 2>(space, simplex_nodes, simplex_vertices, g, residual);
+    case 33: return subtract_load_on<3, 3>(space, simplex_nodes, simplex_vertices, g, residual);
+  }
+  throw Error(fmt::format("assembly: unsupported load on {}-simplices in {}D", sd, space.dim()), ErrorKind::Internal);
 }
 
 }  // namespace
@@ -315,6 +316,7 @@ Mat assemble_pressure_mass(MPI_Comm comm, const FieldSpace& space) {
   for (int c = 0; c < space.mesh().n_cells(); ++c) {
     const int* v = space.mesh().cell(c);
     if (space.pressure_dof(v[0]) < 0) continue;
+    // The chord cell's volume: the matrix is a preconditioner's Schur approximation.
     const double vol = std::abs(mesh::signed_measure(space.mesh(), c));
     PetscInt idx[4];
     double Me[16];
@@ -344,7 +346,7 @@ std::vector<double> cell_cauchy_stress(const FieldSpace& space,
       space.cell_nodes(c, nodes);
       for (int a = 0; a < NB; ++a)
         for (int i = 0; i < D; ++i) ue[a][i] = u[static_cast<size_t>(nodes[a]) * D + i];
-      physical_gradients<D, NB>(dN, affine_cell<D>(space.mesh(), c).inv, G);
+      physical_gradients<D, NB>(dN, map_of_cell<D, NB>(space, c, nodes, dN).inv, G);
       Mat3 sigma = cell_material[c]->cauchy(deformation_gradient<D, NB>(ue, G));
       if (cell_material[c]->mixed_bulk_modulus() > 0) {  // sigma = sigma' - p I, p at the centroid
         double p = 0;
@@ -391,25 +393,16 @@ std::array<double, 3> boundary_force(const FieldSpace& space, const std::vector<
       int local[D];  // cell-local vertices of the facet
       for (int j = 0, k = 0; j <= D; ++j)
         if (j != opposite) local[k++] = j;
-      // Outward normal times the facet's measure (reference configuration).
-      Eigen::Matrix<double, D, 1> X[D + 1];
-      for (int j = 0; j <= D; ++j)
-        for (int i = 0; i < D; ++i) X[j][i] = mesh.vertex(v[j])[i];
-      Eigen::Matrix<double, D, 1> area_normal;
-      if constexpr (D == 2) {
-        const auto e = X[local[1]] - X[local[0]];
-        area_normal = {e[1], -e[0]};
-      } else {
-        const Eigen::Vector3d e1 = X[local[1]] - X[local[0]], e2 = X[local[2]] - X[local[0]];
-        area_normal = 0.5 * e1.cross(e2);
-      }
-      if (area_normal.dot(X[opposite] - X[local[0]]) > 0) area_normal = -area_normal;
-      const double measure = area_normal.norm() * (D == 2 ? 1.0 : 2.0);  // reference facet measure 1/(D-1)!
-      const Eigen::Matrix<double, D, 1> normal = area_normal.normalized();
+      // Outward normal times the facet's measure in the reference cell, per unit measure of
+      // the (D-1)-simplex the rule integrates over: the slanted facet opposite vertex 0 is
+      // sqrt(D) times larger with normal (1, ..., 1) / sqrt(D), the others have -e_(k-1).
+      // Nanson's formula carries it to the (possibly curved) cell: |det J| J^-T a_ref.
+      Eigen::Matrix<double, D, 1> a_ref = Eigen::Matrix<double, D, 1>::Zero();
+      if (opposite == 0) a_ref.setOnes();
+      else a_ref[opposite - 1] = -1;
       space.cell_nodes(c, nodes);
       for (int a = 0; a < NB; ++a)
         for (int i = 0; i < D; ++i) ue[a][i] = u[static_cast<size_t>(nodes[a]) * D + i];
-      const auto inv = affine_cell<D>(mesh, c).inv;
       for (int q = 0; q < rule.size(); ++q) {
         // The facet point in the cell's reference coordinates: barycentric weights of the
         // facet's vertices placed on the cell's reference vertices (vertex 0 at the origin).
@@ -418,7 +411,9 @@ std::array<double, 3> boundary_force(const FieldSpace& space, const std::vector<
         for (int j = 0; j < D - 1; ++j) bary[local[0]] -= rule.point(q)[j], bary[local[j + 1]] = rule.point(q)[j];
         for (int j = 1; j <= D; ++j) xi[j - 1] = bary[j];
         eval_shape(D, space.kind(), xi, N, dN);
-        physical_gradients<D, NB>(dN, inv, G);
+        const CellMap<D> geo = map_of_cell<D, NB>(space, c, nodes, dN);
+        const Eigen::Matrix<double, D, 1> area_normal = std::abs(geo.det) * geo.inv.transpose() * a_ref;
+        physical_gradients<D, NB>(dN, geo.inv, G);
         const Mat3 F = deformation_gradient<D, NB>(ue, G);
         Mat3 P = cell_material[c]->first_piola(F);
         if (cell_material[c]->mixed_bulk_modulus() > 0) {
@@ -426,9 +421,8 @@ std::array<double, 3> boundary_force(const FieldSpace& space, const std::vector<
           for (int j = 0; j <= D; ++j) p += bary[j] * u[space.pressure_dof(v[j])];
           add_pressure_to_stress(F.inverse().transpose(), F.determinant(), p, P, nullptr);
         }
-        const double w = rule.weights[q] * measure;
         for (int i = 0; i < D; ++i)
-          for (int J = 0; J < D; ++J) force[i] += w * P(i, J) * normal[J];
+          for (int J = 0; J < D; ++J) force[i] += rule.weights[q] * P(i, J) * area_normal[J];
       }
     }
     return force;

@@ -4,6 +4,20 @@ namespace stiction::fem {
 
 FieldSpace::FieldSpace(const mesh::Mesh& mesh, BasisKind kind, const std::vector<char>& vertex_has_pressure)
     : mesh_(&mesh), kind_(kind), topo_(mesh::build_edges(mesh)) {
+  if (is_quadratic(kind) && mesh.is_curved()) {
+    const int d = mesh.dim, ne = mesh::n_simplex_edges(d);
+    edge_offset_.assign(static_cast<size_t>(topo_.n_edges()) * d, 0.0);
+    std::vector<char> curved_edge(topo_.n_edges(), 0);
+    for (const auto& [edge, mid] : mesh.edge_midpoints) {
+      const int e = topo_.find(edge[0], edge[1]);
+      if (e < 0) continue;  // not an edge of any cell
+      mesh.edge_offset(edge[0], edge[1], &edge_offset_[static_cast<size_t>(e) * d]);
+      curved_edge[e] = 1;
+    }
+    curved_cell_.assign(mesh.n_cells(), 0);
+    for (int c = 0; c < mesh.n_cells(); ++c)
+      for (int k = 0; k < ne; ++k) curved_cell_[c] |= curved_edge[topo_.cell_edges[static_cast<size_t>(c) * ne + k]];
+  }
   if (vertex_has_pressure.empty()) return;
   pressure_index_.assign(mesh.n_vertices(), -1);
   for (int v = 0; v < mesh.n_vertices(); ++v)
@@ -35,7 +49,8 @@ void FieldSpace::node_position(int node, double* X) const {
     return;
   }
   const auto [a, b] = topo_.edges[node - n_vertices()];
-  for (int k = 0; k < d; ++k) X[k] = 0.5 * (mesh_->vertex(a)[k] + mesh_->vertex(b)[k]);
+  const double* offset = node_offset(node);
+  for (int k = 0; k < d; ++k) X[k] = 0.5 * (mesh_->vertex(a)[k] + mesh_->vertex(b)[k]) + offset[k];
 }
 
 void FieldSpace::interpolate(const VectorField& g, std::vector<double>& coefs) const {

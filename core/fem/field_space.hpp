@@ -51,8 +51,18 @@ public:
   void cell_nodes(int cell, int* nodes) const;    // local order: vertices, edges
   void facet_nodes(int facet, int* nodes) const;
   bool is_vertex_node(int node) const { return node < n_vertices(); }
-  // Position of a node in the reference configuration (vertex, or edge midpoint).
+  // Position of a node in the reference configuration (vertex, or edge midpoint: on the
+  // geometry where the edge is curved).
   void node_position(int node, double* X) const;
+  // Isoparametric geometry: P2 cells map through their edge nodes, X(xi) = chord map +
+  // sum over edge nodes of node_offset * N_edge(xi) (fem/cell_geometry.hpp). The offset of a
+  // node is true midpoint - chord midpoint (dim entries): zero at vertices, on straight
+  // edges and in P1 spaces, which keep the chords.
+  bool is_curved() const { return !edge_offset_.empty(); }
+  bool is_curved_cell(int cell) const { return !curved_cell_.empty() && curved_cell_[cell]; }
+  const double* node_offset(int node) const {
+    return is_curved() && !is_vertex_node(node) ? &edge_offset_[static_cast<size_t>(node - n_vertices()) * dim()] : kZero;
+  }
 
   // Coefficients of the displacement interpolant of g, written into coefs (size n_dofs,
   // pressure entries zero). Hierarchical edge coefficient: g(mid) - (g(a) + g(b)) / 2.
@@ -73,6 +83,9 @@ private:
   BasisKind kind_;
   mesh::EdgeTopology topo_;
   std::vector<int> pressure_index_;  // per vertex, -1 without pressure
+  std::vector<double> edge_offset_;  // n_edges x dim; empty when no edge is curved
+  std::vector<char> curved_cell_;    // per cell: one of its edges is curved
+  static constexpr double kZero[3] = {0, 0, 0};
   int n_pressure_ = 0;
 };
 

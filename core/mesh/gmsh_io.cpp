@@ -245,6 +245,7 @@ Mesh mesh_geo(const std::string& path, double size_factor) {
     const int dim = gmsh::model::getDimension();
     if (dim != 2 && dim != 3) throw Error(fmt::format("'{}' describes no 2D or 3D geometry", path));
     gmsh::model::mesh::generate(dim);
+    detail::place_edge_midpoints_on_geometry();
     return extract_current_model(path);
   });
 }

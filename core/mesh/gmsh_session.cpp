@@ -2,6 +2,8 @@
 
 #include <gmsh.h>
 
+#include <array>
+#include <cmath>
 #include <functional>
 #include <unordered_map>
 #include <vector>
@@ -61,8 +63,11 @@ Mesh extract_current_model(const std::string& what) {
     return id;
   };
 
-  // Calls f(corner node tags) for each simplex of dimension `dim` in entity `entity`.
-  auto for_simplices = [&](int dim, int entity, const std::function<void(const std::size_t*)>& f) {
+  // Calls f(node tags, edge of each high-order node) for each simplex of dimension `dim` in
+  // entity `entity`: the corners first; a second-order element's further nodes lie on its
+  // edges, edge_of[k] naming the pair of corners (from their reference coordinates).
+  using EdgeOfNode = std::vector<std::array<int, 2>>;
+  auto for_simplices = [&](int dim, int entity, const std::function<void(const std::size_t*, const EdgeOfNode&)>& f) {
     std::vector<int> types;
     std::vector<std::vector<std::size_t>> tags, nodes;
     gmsh::model::mesh::getElements(types, tags, nodes, dim, entity);
@@ -74,16 +79,46 @@ Mesh extract_current_model(const std::string& what) {
       if (n_primary != dim + 1)
         throw Error(fmt::format("{}: element type '{}' is not a simplex (only triangles and "
                                 "tetrahedra are supported)", what, name));
-      for (size_t e = 0; e < tags[t].size(); ++e) f(&nodes[t][e * n_nodes]);
+      EdgeOfNode edge_of;
+      if (order == 2)
+        for (int k = n_primary; k < n_nodes; ++k) {
+          std::array<int, 2> found{-1, -1};
+          for (int a = 0; a < n_primary; ++a)
+            for (int b = a + 1; b < n_primary; ++b) {
+              double miss = 0;
+              for (int i = 0; i < edim; ++i)  // edim coordinates per node
+                miss += std::abs(local_coords[edim * k + i] - 0.5 * (local_coords[edim * a + i] + local_coords[edim * b + i]));
+              if (miss < 1e-9) found = {a, b};
+            }
+          edge_of.push_back(found);
+        }
+      for (size_t e = 0; e < tags[t].size(); ++e) f(&nodes[t][e * n_nodes], edge_of);
+    }
+  };
+
+  // A second-order node off its edge's chord is a curved edge's midpoint (Mesh::edge_midpoints).
+  auto record_curved_edges = [&](const std::size_t* n, const EdgeOfNode& edge_of) {
+    for (size_t k = 0; k < edge_of.size(); ++k) {
+      const auto [a, b] = edge_of[k];
+      if (a < 0) continue;
+      const int va = local.at(n[a]), vb = local.at(n[b]);
+      const double* mid = &xyz[3 * pos.at(n[d + 1 + k])];
+      double gap = 0, length = 0;
+      for (int i = 0; i < d; ++i) {
+        gap += std::pow(mid[i] - 0.5 * (m.vertex(va)[i] + m.vertex(vb)[i]), 2);
+        length += std::pow(m.vertex(va)[i] - m.vertex(vb)[i], 2);
+      }
+      if (gap > 1e-24 * length) m.edge_midpoints[{std::min(va, vb), std::max(va, vb)}] = {mid[0], mid[1], mid[2]};
     }
   };
 
   gmsh::vectorpair groups;
   gmsh::model::getPhysicalGroups(groups, d);
   auto add_cells = [&](int entity, int tag) {
-    for_simplices(d, entity, [&](const std::size_t* n) {
+    for_simplices(d, entity, [&](const std::size_t* n, const EdgeOfNode& edge_of) {
       for (int k = 0; k <= d; ++k) m.cells.push_back(vertex_of(n[k]));
       m.cell_tags.push_back(tag);
+      record_curved_edges(n, edge_of);
     });
   };
   if (groups.empty()) {
@@ -106,7 +141,7 @@ Mesh extract_current_model(const std::string& what) {
     std::vector<int> entities;
     gmsh::model::getEntitiesForPhysicalGroup(gd, gtag, entities);
     for (int e : entities)
-      for_simplices(d - 1, e, [&](const std::size_t* n) {
+      for_simplices(d - 1, e, [&](const std::size_t* n, const EdgeOfNode&) {
         for (int k = 0; k < d; ++k) {
           auto it = local.find(n[k]);
           if (it == local.end())
@@ -122,11 +157,27 @@ Mesh extract_current_model(const std::string& what) {
   return m;
 }
 
+void place_edge_midpoints_on_geometry() {
+  bool curved = false;
+  gmsh::vectorpair entities;
+  gmsh::model::getEntities(entities);
+  for (auto [dim, tag] : entities) {
+    if (dim != 1 && dim != 2) continue;
+    std::string type;
+    gmsh::model::getType(dim, tag, type);
+    curved = curved || (dim == 1 ? type != "Line" : type != "Plane");
+  }
+  if (!curved) return;
+  gmsh::option::setNumber("Mesh.SecondOrderLinear", 0);  // the new nodes on the CAD entities
+  gmsh::model::mesh::setOrder(2);
+}
+
 void set_size_and_generate(int dim, double h, double h_min) {
   gmsh::option::setNumber("Mesh.MeshSizeMin", h_min > 0 ? h_min : h);
   gmsh::option::setNumber("Mesh.MeshSizeMax", h);
   gmsh::option::setNumber("Mesh.Algorithm3D", 1);  // Delaunay: fast and deterministic
   gmsh::model::mesh::generate(dim);
+  place_edge_midpoints_on_geometry();
 }
 
 }  // namespace stiction::mesh::detail

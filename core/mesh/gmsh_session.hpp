@@ -37,11 +37,17 @@ auto with_gmsh(const std::string& context, F&& f) {
 
 // Builds a Mesh from Gmsh's current model. Cells are the elements of top dimension in
 // physical groups (all of them when there is none); facets those of dimension - 1 in
-// physical groups. Only vertices used by cells are kept.
+// physical groups. Only vertices used by cells are kept; the edge nodes of second-order
+// cells that lie off their chords become Mesh::edge_midpoints.
 Mesh extract_current_model(const std::string& what);
 
+// Where the current model has curved curves or surfaces, makes its mesh second order with
+// the edge nodes on the CAD entities, so extract_current_model records the curved edges'
+// midpoints (Mesh::edge_midpoints). Flat models stay first order.
+void place_edge_midpoints_on_geometry();
+
 // Meshes the current model in `dim` with sizes clamped to [h_min, h] (h_min <= 0: h),
-// 3D Delaunay.
+// 3D Delaunay, then place_edge_midpoints_on_geometry.
 void set_size_and_generate(int dim, double h, double h_min = 0);
 
 }  // namespace stiction::mesh::detail

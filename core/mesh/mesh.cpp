@@ -84,6 +84,65 @@ double signed_measure(const Mesh& mesh, int cell) {
           a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0;
 }
 
+void Mesh::edge_offset(int a, int b, double* out) const {
+  std::fill(out, out + dim, 0.0);
+  const auto it = edge_midpoints.find({std::min(a, b), std::max(a, b)});
+  if (it == edge_midpoints.end()) return;
+  for (int k = 0; k < dim; ++k) out[k] = it->second[k] - 0.5 * (vertex(a)[k] + vertex(b)[k]);
+}
+
+void curved_cell_map(const Mesh& mesh, int cell, const double* l, double* X, double* det) {
+  const int d = mesh.dim;
+  const int* v = mesh.cell(cell);
+  // dl_v / dxi_j with xi_j = l_{j+1}, l_0 = 1 - sum xi.
+  auto dl = [](int vtx, int j) { return (vtx == j + 1 ? 1.0 : 0.0) - (vtx == 0 ? 1.0 : 0.0); };
+  double J[3][3] = {};
+  std::fill(X, X + d, 0.0);
+  for (int k = 0; k <= d; ++k)
+    for (int i = 0; i < d; ++i) {
+      X[i] += mesh.vertex(v[k])[i] * l[k];
+      for (int j = 0; j < d; ++j) J[i][j] += mesh.vertex(v[k])[i] * dl(k, j);
+    }
+  double offset[3];
+  for (int e = 0; e < n_simplex_edges(d); ++e) {
+    const auto [a, b] = simplex_edge(d, e);
+    mesh.edge_offset(v[a], v[b], offset);
+    for (int i = 0; i < d; ++i) {
+      X[i] += offset[i] * 4 * l[a] * l[b];
+      for (int j = 0; j < d; ++j) J[i][j] += offset[i] * 4 * (dl(a, j) * l[b] + l[a] * dl(b, j));
+    }
+  }
+  *det = d == 2 ? J[0][0] * J[1][1] - J[0][1] * J[1][0]
+                : J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) - J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
+                      J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+}
+
+namespace {
+
+bool has_curved_edge(const Mesh& mesh, int c) {
+  const int* v = mesh.cell(c);
+  for (int e = 0; e < n_simplex_edges(mesh.dim); ++e) {
+    const auto [a, b] = simplex_edge(mesh.dim, e);
+    if (mesh.edge_midpoints.count({std::min(v[a], v[b]), std::max(v[a], v[b])})) return true;
+  }
+  return false;
+}
+
+// Barycentric coordinates of a cell's nodes: its vertices, then its edge midpoints.
+std::vector<std::array<double, 4>> node_barycentrics(int d) {
+  std::vector<std::array<double, 4>> out(d + 1, {0, 0, 0, 0});
+  for (int k = 0; k <= d; ++k) out[k][k] = 1;
+  for (int e = 0; e < n_simplex_edges(d); ++e) {
+    const auto [a, b] = simplex_edge(d, e);
+    std::array<double, 4> l{0, 0, 0, 0};
+    l[a] = l[b] = 0.5;
+    out.push_back(l);
+  }
+  return out;
+}
+
+}  // namespace
+
 double bounding_diagonal(const Mesh& mesh) {
   double sq = 0;
   for (int k = 0; k < mesh.dim; ++k) {
@@ -118,6 +177,19 @@ void check_validity(const Mesh& mesh, const std::string& what) {
     throw Error(fmt::format("{}: {} element {} (signed measure {:.3g}) with vertices{}", what,
                             m < 0 ? "inverted" : "degenerate", c, m, xs));
   }
+  if (!mesh.is_curved()) return;
+  const auto nodes = node_barycentrics(mesh.dim);
+  double X[3], det;
+  for (int c = 0; c < mesh.n_cells(); ++c) {
+    if (!has_curved_edge(mesh, c)) continue;
+    for (const auto& l : nodes) {
+      curved_cell_map(mesh, c, l.data(), X, &det);
+      if (!(det > 0))
+        throw Error(fmt::format("{}: curved {} is folded: det(dX/dxi) = {:.3g} at one of its nodes (an edge "
+                                "midpoint on the geometry lies too far from the chord for the cell's size)",
+                                what, describe_cell(mesh, c), det));
+    }
+  }
 }
 
 std::string describe_cell(const Mesh& mesh, int c) {
@@ -142,6 +214,34 @@ double dist2(const Mesh& mesh, int a, int b) {
   return s;
 }
 
+// The curved edges of parent cell c's children (the last `children` cells of fine): each
+// child edge's midpoint is the parent's quadratic map at the edge's middle, kept where it
+// leaves the child's chord. m holds the fine vertices at the parent's edge midpoints.
+void add_children_curves(const Mesh& mesh, int c, const int* m, int children, Mesh& fine) {
+  const int d = mesh.dim, nve = n_simplex_edges(d);
+  const int* v = mesh.cell(c);
+  const auto nodes = node_barycentrics(d);
+  std::map<int, std::array<double, 4>> bary;  // fine vertex -> barycentric coordinates in c
+  for (int k = 0; k <= d; ++k) bary[v[k]] = nodes[k];
+  for (int e = 0; e < nve; ++e) bary[m[e]] = nodes[d + 1 + e];
+  double X[3], det;
+  for (int child = fine.n_cells() - children; child < fine.n_cells(); ++child) {
+    const int* w = fine.cell(child);
+    for (int e = 0; e < nve; ++e) {
+      const auto [a, b] = simplex_edge(d, e);
+      std::array<double, 4> l{};
+      for (int k = 0; k <= d; ++k) l[k] = 0.5 * (bary.at(w[a])[k] + bary.at(w[b])[k]);
+      curved_cell_map(mesh, c, l.data(), X, &det);
+      double gap = 0, length = 0;
+      for (int k = 0; k < d; ++k) {
+        gap += std::pow(X[k] - 0.5 * (fine.vertex(w[a])[k] + fine.vertex(w[b])[k]), 2);
+        length += std::pow(fine.vertex(w[a])[k] - fine.vertex(w[b])[k], 2);
+      }
+      if (gap > 1e-24 * length) fine.edge_midpoints[{std::min(w[a], w[b]), std::max(w[a], w[b])}] = {X[0], X[1], d == 3 ? X[2] : 0.0};
+    }
+  }
+}
+
 }  // namespace
 
 Mesh refine(const Mesh& mesh) {
@@ -153,8 +253,11 @@ Mesh refine(const Mesh& mesh) {
   fine.facet_tag_names = mesh.facet_tag_names;
   fine.coords = mesh.coords;
   fine.coords.reserve(static_cast<size_t>(nv + topo.n_edges()) * d);
-  for (auto [a, b] : topo.edges)
-    for (int k = 0; k < d; ++k) fine.coords.push_back(0.5 * (mesh.vertex(a)[k] + mesh.vertex(b)[k]));
+  double offset[3];
+  for (auto [a, b] : topo.edges) {
+    mesh.edge_offset(a, b, offset);
+    for (int k = 0; k < d; ++k) fine.coords.push_back(0.5 * (mesh.vertex(a)[k] + mesh.vertex(b)[k]) + offset[k]);
+  }
 
   const int children = d == 2 ? 4 : 8;
   fine.cells.reserve(mesh.cells.size() * children);
@@ -186,6 +289,7 @@ Mesh refine(const Mesh& mesh) {
       }
     }
     fine.cell_tags.insert(fine.cell_tags.end(), children, mesh.cell_tags[c]);
+    if (mesh.is_curved() && has_curved_edge(mesh, c)) add_children_curves(mesh, c, m, children, fine);
   }
   // Fix the orientation of the interior tetrahedra (corner children keep the parent's).
   for (int c = 0; c < fine.n_cells(); ++c)
@@ -231,6 +335,7 @@ TagOffsets append(Mesh& into, const Mesh& part, const std::string& prefix) {
   for (int t : part.facet_tags) into.facet_tags.push_back(t + off.facet);
   for (auto& [n, t] : part.cell_tag_names) into.cell_tag_names[prefix + "/" + n] = t + off.cell;
   for (auto& [n, t] : part.facet_tag_names) into.facet_tag_names[prefix + "/" + n] = t + off.facet;
+  for (const auto& [edge, mid] : part.edge_midpoints) into.edge_midpoints[{edge[0] + nv, edge[1] + nv}] = mid;
   return off;
 }
 

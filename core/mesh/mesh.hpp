@@ -21,6 +21,11 @@ struct Mesh {
   std::vector<int> facet_tags; // one per facet
   std::map<std::string, int> cell_tag_names;   // name -> tag
   std::map<std::string, int> facet_tag_names;  // name -> tag
+  // Curved edges only: the true midpoint of edge {lo, hi} (vertex indices, lo < hi) where
+  // the geometry (Gmsh's CAD model, a generator's exact surface) bends away from the chord.
+  // P2 spaces map such cells isoparametrically, X(l) = sum_v X_v l_v + sum_e d_e 4 l_a l_b
+  // with d_e = midpoint - chord midpoint (fem/cell_geometry.hpp); P1 spaces keep the chords.
+  std::map<std::array<int, 2>, std::array<double, 3>> edge_midpoints;
 
   int vertices_per_cell() const { return dim + 1; }
   int n_vertices() const { return dim ? static_cast<int>(coords.size()) / dim : 0; }
@@ -29,6 +34,9 @@ struct Mesh {
   const double* vertex(int v) const { return coords.data() + static_cast<size_t>(v) * dim; }
   const int* cell(int c) const { return cells.data() + static_cast<size_t>(c) * (dim + 1); }
   const int* facet(int f) const { return facets.data() + static_cast<size_t>(f) * dim; }
+  bool is_curved() const { return !edge_midpoints.empty(); }
+  // d_e of edge (a, b) into out (dim entries): zero on a straight edge.
+  void edge_offset(int a, int b, double* out) const;
 };
 
 // "cell 14090 (vertex centroid (2.862, 3.993))": a cell named so that a user can find it in
@@ -67,15 +75,23 @@ struct EdgeTopology {
 EdgeTopology build_edges(const Mesh& mesh);
 
 // Uniform refinement: triangle -> 4, tetrahedron -> 8 (red refinement, the interior
-// octahedron split along its shortest diagonal); cell and facet tags are kept.
+// octahedron split along its shortest diagonal); cell and facet tags are kept. On a curved
+// mesh the new vertices are the curved edges' midpoints and the children's edges follow the
+// parent's quadratic map, so refinement stays on the level-0 geometry to second order.
 Mesh refine(const Mesh& mesh);
 Mesh refine(const Mesh& mesh, int levels);
 
-// Signed measure (area/volume) of a cell; positive for the reference orientation.
+// Signed measure (area/volume) of a cell's chords; positive for the reference orientation.
 double signed_measure(const Mesh& mesh, int cell);
+// A curved cell's quadratic map at barycentric coordinates l (dim + 1 entries): the position
+// X and the Jacobian's determinant det(dX/dxi) (the chord cell's at every point when
+// straight).
+void curved_cell_map(const Mesh& mesh, int cell, const double* l, double* X, double* det);
 
 // Throws stiction::Error naming the first inverted or degenerate cell with its index and
-// vertex coordinates. `what` names the mesh in the message.
+// vertex coordinates; a curved cell must also keep det(dX/dxi) > 0 at its vertices and edge
+// midpoints (a midpoint pushed across the opposite side folds the cell). `what` names the
+// mesh in the message.
 void check_validity(const Mesh& mesh, const std::string& what);
 
 // Appends `part` to `into`: vertex and cell indices are shifted, tags are shifted so they

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <utility>
+#include <vector>
 
 #include "common/error.hpp"
 
@@ -44,13 +45,27 @@ Mesh structured_tube(const TubeSpec& spec) {
     }
   const int e = spec.axis, a = (e + 1) % 3, b = (e + 2) % 3;
   const double theta0 = spec.angles_degrees[0] * M_PI / 180, dtheta = span * M_PI / 180;
-  for (int v = 0; v < m.n_vertices(); ++v) {
-    double* x = m.coords.data() + 3 * static_cast<size_t>(v);
-    const double r = spec.inner_radius + spec.thickness * x[0], theta = theta0 + dtheta * x[1],
-                 s = spec.length * x[2];
+  auto to_tube = [&](const double* unit, double* x) {
+    const double r = spec.inner_radius + spec.thickness * unit[0], theta = theta0 + dtheta * unit[1],
+                 s = spec.length * unit[2];
     double out[3];
     out[a] = r * std::cos(theta), out[b] = r * std::sin(theta), out[e] = s;
     for (int c = 0; c < 3; ++c) x[c] = spec.center[c] + out[c];
+  };
+  const std::vector<double> unit = m.coords;
+  for (int v = 0; v < m.n_vertices(); ++v) to_tube(&unit[3 * static_cast<size_t>(v)], m.coords.data() + 3 * static_cast<size_t>(v));
+  // Edges that cut the cylinders get their true midpoints: the image of the parameter
+  // midpoint (the map is smooth, so that is on the geometry to the order P2 needs).
+  for (auto [p, q] : build_edges(m).edges) {
+    double mid_unit[3], mid[3];
+    for (int c = 0; c < 3; ++c) mid_unit[c] = 0.5 * (unit[3 * static_cast<size_t>(p) + c] + unit[3 * static_cast<size_t>(q) + c]);
+    to_tube(mid_unit, mid);
+    double gap = 0, length = 0;
+    for (int c = 0; c < 3; ++c) {
+      gap += std::pow(mid[c] - 0.5 * (m.vertex(p)[c] + m.vertex(q)[c]), 2);
+      length += std::pow(m.vertex(p)[c] - m.vertex(q)[c], 2);
+    }
+    if (gap > 1e-24 * length) m.edge_midpoints[{p, q}] = {mid[0], mid[1], mid[2]};
   }
   // The map (r, theta, s) -> x has det = r (a x b = e): orientation kept; check anyway.
   for (int c = 0; c < m.n_cells(); ++c)

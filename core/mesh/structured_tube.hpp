@@ -1,9 +1,10 @@
 #pragma once
 // A structured tetrahedral mesh of a tube sector: the ring between two radii, between two
 // angles, along a straight axis. Made as structured_box's Kuhn-split hexahedra in
-// (radius, angle, axial) coordinates, mapped so that every vertex lies on the true cylinders
-// (only the straight edges between vertices cut the curvature). A refined level is a new
-// mesh with 2^level times the cells, so refined vertices stay on the cylinders too.
+// (radius, angle, axial) coordinates, mapped so that every vertex lies on the true cylinders,
+// and every edge that the map bends carries its true midpoint (Mesh::edge_midpoints), so
+// that P2 cells are curved. A refined level is a new mesh with 2^level times the cells, so
+// refined vertices stay on the cylinders too.
 #include <array>
 #include <limits>
 

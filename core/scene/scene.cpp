@@ -328,7 +328,8 @@ mesh::Mesh make_body_mesh(const toml::table& t, const std::string& file, const s
     for (size_t k = 0; k < arc_sides.size(); ++k)
       spec.arc_centers[static_cast<int>(arc_sides[k])] = {centres[2 * k], centres[2 * k + 1]};
     // Curved sides: a refined level is a new Gmsh mesh with sizes / 2^level, so the mesh
-    // converges to the arcs; red refinement would keep the level-0 chords.
+    // converges to the arcs themselves (red refinement would stay on the level-0 quadratic
+    // arcs of the P2 cells).
     if (!spec.arc_centers.empty()) {
       spec.scale = std::ldexp(1.0, -level);
       *refined = true;

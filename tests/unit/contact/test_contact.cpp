@@ -193,6 +193,34 @@ TEST(SurfaceContact, JacobianMatchesFiniteDifferencesOnACurvedMaster) {
   expect_exact_jacobian(pair, s->space->n_dofs(), u0, u, lambda);
 }
 
+// Curved reference surfaces (isoparametric P2): the base's top and the block's bottom are
+// circular arcs, each bulging towards the other. The slave's lumped masses add up to the
+// arc's length (the chords' sum is shorter), and the blocks match central differences.
+TEST(SurfaceContact, JacobianMatchesFiniteDifferencesOnCurvedReferenceSurfaces) {
+  std::string text = test::replaced(kBlockOnBlock, "sides = [\"bottom\", \"right\", \"top\", \"left\"]\n\n[[body]]",
+                                    "sides = [\"bottom\", \"right\", \"top\", \"left\"]\narc_sides = [2]\n"
+                                    "arc_centers = [0.5, -5.0]\n\n[[body]]");
+  text = test::replaced(text, "points = [0.0, 1.0, 1.0, 1.0, 1.0, 1.6, 0.0, 1.6]\nsides = [\"bottom\", \"right\", \"top\", \"left\"]",
+                        "points = [0.0, 1.1, 1.0, 1.1, 1.0, 1.6, 0.0, 1.6]\nsides = [\"bottom\", \"right\", \"top\", \"left\"]\n"
+                        "arc_sides = [0]\narc_centers = [0.5, 6.5]");
+  auto s = scene::build_scene(text, "curved-block-on-curved-block", ".");
+  ASSERT_TRUE(s->space->is_curved());
+  auto& pair = dynamic_cast<SurfaceContact&>(*s->contacts.at(0));
+  const double R = std::hypot(0.5, 5.4), arc = 2 * R * std::asin(0.5 / R);
+  double mass = 0, chords = 0;
+  for (double m : pair.slave().lumped_mass) mass += m;
+  const mesh::Mesh& m = s->space->mesh();
+  for (int f = 0; f < m.n_facets(); ++f)
+    if (m.facet_tags[f] == m.facet_tag_names.at("block/bottom"))
+      chords += std::hypot(m.vertex(m.facet(f)[1])[0] - m.vertex(m.facet(f)[0])[0],
+                           m.vertex(m.facet(f)[1])[1] - m.vertex(m.facet(f)[0])[1]);
+  EXPECT_NEAR(mass, arc, 1e-7 * arc);
+  EXPECT_GT(arc - chords, 1e-5);
+  std::vector<double> u0, u, lambda;
+  random_state(pair, s->space->n_dofs(), 0.01, 1, u0, u, lambda);
+  expect_exact_jacobian(pair, s->space->n_dofs(), u0, u, lambda);
+}
+
 // J v against central differences (h = 1e-7) along three random directions v of
 // (u, lambda), to 1e-6 relative to the largest entry of J v: for systems too large for
 // column-wise differences. The pair's begin_increment has been called.
