@@ -71,18 +71,20 @@ TEST(Ironing, SlidingWithFrictionPassesTheFrontOfTheArcWithoutCutBacks) {
   EXPECT_LE(ratio, 0.4);
 }
 
-// First contact of the frictionless ironing (t = 0.3): with the states updated after every
-// linear solve (the paper's rule, state_update_tolerance = 0) a node at the edge of the
-// contact zone enters and leaves in turn and the step stops with an active-set cycle; with
-// the default gate the steps converge. Cut-backs are off to see the raw method.
-TEST(Ironing, StateUpdateGateRemovesTheFirstContactCycle) {
-  const std::string text = harness::builtin_scenes().at("ironing-2d-frictionless");
-  const IroningRun gated = run_until(text, 0.4, [](scene::Scene& s) { s.newton.max_cuts = 0; });
-  ASSERT_EQ(gated.steps.size(), 4u);
+// The first sliding steps of the frictional ironing: with the states updated after every
+// linear solve (the paper's rule, state_update_tolerance = 0) nodes at the edge of the
+// contact zone flip in turn and load step 19 (t = 1.045) stops with an active-set cycle;
+// with the default gate every step to t = 1.05 converges. Cut-backs are off to see the raw
+// method. (With the indenter's sharp corners the same cycle appeared at first contact of
+// the frictionless variant, t = 0.3; with its fillets that one converges either way.)
+TEST(Ironing, StateUpdateGateRemovesTheSlidingContactCycle) {
+  const std::string text = harness::builtin_scenes().at("ironing-2d");
+  const IroningRun gated = run_until(text, 1.05, [](scene::Scene& s) { s.newton.max_cuts = 0; });
+  ASSERT_EQ(gated.steps.size(), 20u);
   for (const auto& step : gated.steps) EXPECT_TRUE(step.converged()) << step.step << ": " << step.detail;
-  EXPECT_GE(gated.steps.back().contact.at(0).slip, 4) << "the indenter presses over several nodes";
+  EXPECT_GE(gated.steps.back().contact.at(0).slip, 4) << "the indenter slides over several nodes";
 
-  const IroningRun every_solve = run_until(text, 0.4, [](scene::Scene& s) {
+  const IroningRun every_solve = run_until(text, 1.05, [](scene::Scene& s) {
     s.newton.max_cuts = 0;
     s.newton.active_set.update_tolerance = 0;
     s.newton.active_set.cycle_remedies = 0;
