@@ -18,6 +18,7 @@
 #include "csv_table.hpp"
 #include "ksp_solver.hpp"
 #include "registry.hpp"
+#include "run_metrics.hpp"
 
 namespace stiction::harness {
 
@@ -118,7 +119,7 @@ void write_rows(const std::string& out, const Run& run, const ChildResult& child
       num("unknowns_u_q"), num("unknowns_p"), num("multipliers"), num("vertices"), num("cells"), num("load_steps"), num("load_steps_completed"), num("newton_iterations"), solves,
       num("krylov_iterations"), solves > 0 ? num("krylov_iterations") / solves : 0.0, child.wall_seconds,
       num("assembly_seconds"), num("setup_seconds"), num("solve_seconds"),
-      solves > 0 ? (num("setup_seconds") + num("solve_seconds")) / solves : 0.0, child.peak_rss_mb, mumps,
+      seconds_per_converged_solve(metrics["linear_solve"].as_array()), child.peak_rss_mb, mumps,
       n_complexity ? complexity / n_complexity : 0.0, krylov_rtol > 0 ? fmt::format("{:g}", krylov_rtol) : "",
       csv_field(detail));
   if (!steps.empty()) append_durably(out + "/steps.csv", steps);

@@ -41,7 +41,7 @@ void write_bench_report(const std::string& out_dir) {
   md += "\nRaw data: `runs.csv` (one row per run), `steps.csv` (one row per linear solve), `runs/<run>/` (the "
         "backend's PETSc view in `solver.txt`, per-step CSV, stderr). Rebuild this page with `stiction report "
         "<dir>`.\n\nColumns: unknowns = the Newton system's (displacement, pressure and multipliers); total s = wall time of the run's process; s / linear solve = (set-up + Krylov solve) "
-        "averaged over all linear solves; peak MB = the run's peak resident memory (its own process); Krylov / "
+        "averaged over the linear solves that converged (\"—\" when none did: a factorisation refused for memory is no solve); peak MB = the run's peak resident memory (its own process); Krylov / "
         "solve = Krylov iterations per Newton step. Ratios are lu-mumps / backend on the same scene and level: above "
         "1 the backend is faster or leaner. \"—\": the run produced no figure (see status).\n";
 
@@ -68,7 +68,7 @@ void write_bench_report(const std::string& out_dir) {
       const bool ok = finished(r);
       md += fmt::format("| {} | {} | {} | {:.0f} | {} | {} | {} | {} | {} | {} | {} | {} |\n", r.at("level"), r.at("solver"),
                         r.at("status") == "ok" ? "ok" : r.at("status") + (r.at("detail").empty() ? "" : ": " + r.at("detail")),
-                        number(r, "unknowns") + number(r, "multipliers"), cell(r, "wall_seconds", "{:.1f}"), cell(r, "seconds_per_linear_solve", "{:.3f}"),
+                        number(r, "unknowns") + number(r, "multipliers"), cell(r, "wall_seconds", "{:.1f}"), number(r, "seconds_per_linear_solve") > 0 ? cell(r, "seconds_per_linear_solve", "{:.3f}") : "—",
                         ok ? fmt::format("{:.0f}", number(r, "peak_rss_mb")) : "—", cell(r, "newton_iterations", "{:.0f}"),
                         cell(r, "linear_solves", "{:.0f}"), cell(r, "krylov_per_linear_solve", "{:.1f}"),
                         ok && ref ? ratio(number(*ref, "seconds_per_linear_solve"), number(r, "seconds_per_linear_solve")) : "—",

@@ -93,4 +93,17 @@ void write_metrics(const std::string& path, const scene::Scene& scene, const Run
   if (std::rename(tmp.c_str(), path.c_str()) != 0) throw Error(fmt::format("cannot write metrics file '{}'", path));
 }
 
+double seconds_per_converged_solve(const toml::array* linear_solves) {
+  double seconds = 0;
+  int converged = 0;
+  if (linear_solves)
+    for (const auto& node : *linear_solves) {
+      const auto* s = node.as_table();
+      if (!s || !(*s)["converged"].value<bool>().value_or(false)) continue;
+      ++converged;
+      seconds += (*s)["setup_seconds"].value<double>().value_or(0) + (*s)["solve_seconds"].value<double>().value_or(0);
+    }
+  return converged ? seconds / converged : 0.0;
+}
+
 }  // namespace stiction::harness

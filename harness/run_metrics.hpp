@@ -12,6 +12,8 @@
 // [[linear_solve]] step, newton_iteration, converged, reason, krylov_iterations,
 //                  initial_residual, final_residual, setup_seconds, solve_seconds,
 //                  assembly_seconds, and the backend's extra figures (mumps_memory_MB, ...)
+#include <toml++/toml.h>
+
 #include <string>
 #include <vector>
 
@@ -31,5 +33,10 @@ struct RunSummary {
 
 void write_metrics(const std::string& path, const scene::Scene& scene, const RunSummary& summary,
                    const std::vector<nonlinear::StepResult>& steps);
+
+// (set-up + solve) seconds averaged over the [[linear_solve]] records that converged, 0 when
+// none did (or there are none): a factorisation that the memory guard refused, or a Krylov
+// solve that failed, is no solve of the system and does not count.
+double seconds_per_converged_solve(const toml::array* linear_solves);
 
 }  // namespace stiction::harness

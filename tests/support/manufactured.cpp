@@ -59,6 +59,18 @@ void ManufacturedSolution::body_force(const double* X, double* f) const {
   }
 }
 
+std::vector<double> solve_in_one_step(const nonlinear::ElasticityProblem& problem) {
+  nonlinear::NewtonSettings settings;
+  settings.atol = 0;
+  settings.rtol = 1e-10;
+  settings.max_iterations = 3;
+  auto solver = solvers::create_solver("lu-mumps", PETSC_COMM_WORLD);
+  nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, problem, settings, *solver);
+  const auto result = newton.solve_step(1);
+  EXPECT_TRUE(result.converged()) << nonlinear::to_string(result.reason) << " " << result.detail;
+  return newton.displacement();
+}
+
 SolvedProblem solve_manufactured(int dim, int n, int level, fem::BasisKind kind) {
   const ManufacturedSolution ms = manufactured(dim);
   SolvedProblem out;
@@ -77,15 +89,7 @@ SolvedProblem solve_manufactured(int dim, int n, int level, fem::BasisKind kind)
     p.dirichlet.push_back(bc);
   }
   p.body_force = [&ms](const double* X, int, double* f) { ms.body_force(X, f); };
-  nonlinear::NewtonSettings settings;
-  settings.atol = 0;
-  settings.rtol = 1e-10;
-  settings.max_iterations = 3;
-  auto solver = solvers::create_solver("lu-mumps", PETSC_COMM_WORLD);
-  nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, p, settings, *solver);
-  const auto result = newton.solve_step(1);
-  EXPECT_TRUE(result.converged()) << nonlinear::to_string(result.reason) << " " << result.detail;
-  out.u = newton.displacement();
+  out.u = solve_in_one_step(p);
   out.errors = fem::compute_errors(
       *out.space, out.u, [&](const double* X, double* u) { ms.value(X, u); },
       [&](const double* X, double* g) { ms.gradient(X, g); }, 6);

@@ -10,6 +10,7 @@
 #include "fem/field_space.hpp"
 #include "fem/error_norms.hpp"
 #include "mesh/mesh.hpp"
+#include "nonlinear/problem.hpp"
 
 namespace stiction::test {
 
@@ -29,6 +30,10 @@ struct SolvedProblem {
   std::vector<double> u;
   fem::ErrorNorms errors;
 };
+
+// The displacement of a (linear) problem after one load step with lu-mumps, Newton to a
+// relative 1e-10 in at most 3 iterations; a failure to converge is a test failure.
+std::vector<double> solve_in_one_step(const nonlinear::ElasticityProblem& problem);
 
 // Structured unit box with `n` cells per side, refined `level` times, solved with `kind`.
 SolvedProblem solve_manufactured(int dim, int n, int level, fem::BasisKind kind);
