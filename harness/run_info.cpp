@@ -45,11 +45,15 @@ RunInfo collect_run_info(int argc, char** argv) {
   if (const char* env = std::getenv("PETSC_OPTIONS"); env && *env)
     i.command_line = fmt::format("PETSC_OPTIONS='{}' ", env);
   for (int k = 0; k < argc; ++k) i.command_line += (k ? " " : "") + std::string(argv[k]);
+  // The revision the binary was built from; a binary copied away and run after further
+  // commits says so, with the source tree's revision at run time.
   const std::string src = STICTION_SOURCE_DIR;
-  i.git_revision = run("git -C '" + src + "' rev-parse --short=12 HEAD 2>/dev/null");
-  if (i.git_revision.empty()) i.git_revision = "unknown";
-  else if (!run("git -C '" + src + "' status --porcelain --untracked-files=no 2>/dev/null").empty())
-    i.git_revision += " (with uncommitted changes)";
+  i.git_revision = build_revision();
+  std::string tree = run("git -C '" + src + "' rev-parse --short=12 HEAD 2>/dev/null");
+  if (!tree.empty() && !run("git -C '" + src + "' status --porcelain --untracked-files=no 2>/dev/null").empty())
+    tree += " with uncommitted changes";
+  if (!tree.empty() && i.git_revision.rfind(tree.substr(0, 12), 0) != 0)
+    i.git_revision += fmt::format(" (source tree at {} when run)", tree);
   i.petsc_version = petsc_version_string();
   std::error_code ec;
   auto blas = std::filesystem::canonical("/usr/lib/x86_64-linux-gnu/libblas.so.3", ec);

@@ -16,6 +16,11 @@ struct RunInfo {
   std::string date;
 };
 
+// The git revision the binary was built from (generated at build time by
+// cmake/build_revision.cmake). collect_run_info reports it as the run's revision, adding the
+// source tree's revision when that has moved on since the build.
+const char* build_revision();
+
 RunInfo collect_run_info(int argc, char** argv);
 // "# key: value" lines, for CSV headers (prefix "# ") or markdown (prefix "- ").
 std::string format_run_info(const RunInfo& info, const std::string& line_prefix);

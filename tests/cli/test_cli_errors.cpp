@@ -24,6 +24,7 @@
 #include "builtin_scenes.hpp"
 #include "checkpoint.hpp"
 #include "csv_table.hpp"
+#include "run_info.hpp"
 #include "vtu_reader.hpp"
 
 #ifndef STICTION_BINARY
@@ -517,6 +518,30 @@ TEST_F(StictionCli, RecordThenReplayWithAnotherBackend) {
                                  (dir_ / "replay.csv").string()}, dir_);
   EXPECT_EQ(rep.exit_code, 0) << rep.err;
   EXPECT_TRUE(fs::exists(dir_ / "replay.csv"));
+}
+
+// The git revision in a run's header is the one the binary was built from, known without
+// asking git at run time: with a git that fails first on PATH (a binary copied to a
+// machine without the checkout) the header still names it.
+TEST_F(StictionCli, RunHeaderNamesTheRevisionTheBinaryWasBuiltFrom) {
+  const std::string built = stiction::harness::build_revision();
+  if (built == "unknown") GTEST_SKIP() << "built outside a git checkout";
+  fs::create_directories(dir_ / "bin");
+  std::ofstream(dir_ / "bin" / "git") << "#!/bin/sh\nexit 1\n";
+  fs::permissions(dir_ / "bin" / "git", fs::perms::owner_all);
+  const std::string command = "cd " + shell_quote(dir_.string()) + " && PATH=" + shell_quote((dir_ / "bin").string()) +
+                              ":\"$PATH\" " + without_mpi_environment() + " " + shell_quote(STICTION_BINARY) +
+                              " solve cantilever-2d --quiet --no-vtu --out out > stdout.txt 2> stderr.txt";
+  ASSERT_EQ(std::system(command.c_str()), 0) << read_file(dir_ / "stderr.txt");
+  std::ifstream steps(dir_ / "out" / "steps.csv");
+  std::string line;
+  bool found = false;
+  while (std::getline(steps, line))
+    if (line.rfind("# git revision: ", 0) == 0) {
+      found = true;
+      EXPECT_EQ(line.substr(16, 12), built.substr(0, 12)) << line;
+    }
+  EXPECT_TRUE(found) << "no git revision line in steps.csv";
 }
 
 // With a memory limit in the environment (as `stiction bench` sets for its runs), the
