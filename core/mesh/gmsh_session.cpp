@@ -101,14 +101,7 @@ Mesh extract_current_model(const std::string& what) {
     for (size_t k = 0; k < edge_of.size(); ++k) {
       const auto [a, b] = edge_of[k];
       if (a < 0) continue;
-      const int va = local.at(n[a]), vb = local.at(n[b]);
-      const double* mid = &xyz[3 * pos.at(n[d + 1 + k])];
-      double gap = 0, length = 0;
-      for (int i = 0; i < d; ++i) {
-        gap += std::pow(mid[i] - 0.5 * (m.vertex(va)[i] + m.vertex(vb)[i]), 2);
-        length += std::pow(m.vertex(va)[i] - m.vertex(vb)[i], 2);
-      }
-      if (gap > 1e-24 * length) m.edge_midpoints[{std::min(va, vb), std::max(va, vb)}] = {mid[0], mid[1], mid[2]};
+      m.set_edge_midpoint(local.at(n[a]), local.at(n[b]), &xyz[3 * pos.at(n[d + 1 + k])]);
     }
   };
 

@@ -91,6 +91,18 @@ void Mesh::edge_offset(int a, int b, double* out) const {
   for (int k = 0; k < dim; ++k) out[k] = it->second[k] - 0.5 * (vertex(a)[k] + vertex(b)[k]);
 }
 
+void Mesh::set_edge_midpoint(int a, int b, const double* mid) {
+  double gap = 0, length = 0;
+  for (int k = 0; k < dim; ++k) {
+    gap += std::pow(mid[k] - 0.5 * (vertex(a)[k] + vertex(b)[k]), 2);
+    length += std::pow(vertex(a)[k] - vertex(b)[k], 2);
+  }
+  if (!(gap > 1e-24 * length)) return;
+  std::array<double, 3> point{0, 0, 0};
+  std::copy(mid, mid + dim, point.begin());
+  edge_midpoints[{std::min(a, b), std::max(a, b)}] = point;
+}
+
 void curved_cell_map(const Mesh& mesh, int cell, const double* l, double* X, double* det) {
   const int d = mesh.dim;
   const int* v = mesh.cell(cell);
@@ -215,8 +227,7 @@ double dist2(const Mesh& mesh, int a, int b) {
 }
 
 // The curved edges of parent cell c's children (the last `children` cells of fine): each
-// child edge's midpoint is the parent's quadratic map at the edge's middle, kept where it
-// leaves the child's chord. m holds the fine vertices at the parent's edge midpoints.
+// child edge's midpoint is the parent's quadratic map at the edge's middle. m holds the fine vertices at the parent's edge midpoints.
 void add_children_curves(const Mesh& mesh, int c, const int* m, int children, Mesh& fine) {
   const int d = mesh.dim, nve = n_simplex_edges(d);
   const int* v = mesh.cell(c);
@@ -232,12 +243,7 @@ void add_children_curves(const Mesh& mesh, int c, const int* m, int children, Me
       std::array<double, 4> l{};
       for (int k = 0; k <= d; ++k) l[k] = 0.5 * (bary.at(w[a])[k] + bary.at(w[b])[k]);
       curved_cell_map(mesh, c, l.data(), X, &det);
-      double gap = 0, length = 0;
-      for (int k = 0; k < d; ++k) {
-        gap += std::pow(X[k] - 0.5 * (fine.vertex(w[a])[k] + fine.vertex(w[b])[k]), 2);
-        length += std::pow(fine.vertex(w[a])[k] - fine.vertex(w[b])[k], 2);
-      }
-      if (gap > 1e-24 * length) fine.edge_midpoints[{std::min(w[a], w[b]), std::max(w[a], w[b])}] = {X[0], X[1], d == 3 ? X[2] : 0.0};
+      fine.set_edge_midpoint(w[a], w[b], X);
     }
   }
 }

@@ -37,6 +37,9 @@ struct Mesh {
   bool is_curved() const { return !edge_midpoints.empty(); }
   // d_e of edge (a, b) into out (dim entries): zero on a straight edge.
   void edge_offset(int a, int b, double* out) const;
+  // Records mid (dim entries) as the midpoint of edge (a, b) where it leaves the chord by
+  // more than round-off (1e-12 of the edge's length); a straight edge records nothing.
+  void set_edge_midpoint(int a, int b, const double* mid);
 };
 
 // "cell 14090 (vertex centroid (2.862, 3.993))": a cell named so that a user can find it in

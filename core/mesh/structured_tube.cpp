@@ -60,12 +60,7 @@ Mesh structured_tube(const TubeSpec& spec) {
     double mid_unit[3], mid[3];
     for (int c = 0; c < 3; ++c) mid_unit[c] = 0.5 * (unit[3 * static_cast<size_t>(p) + c] + unit[3 * static_cast<size_t>(q) + c]);
     to_tube(mid_unit, mid);
-    double gap = 0, length = 0;
-    for (int c = 0; c < 3; ++c) {
-      gap += std::pow(mid[c] - 0.5 * (m.vertex(p)[c] + m.vertex(q)[c]), 2);
-      length += std::pow(m.vertex(p)[c] - m.vertex(q)[c], 2);
-    }
-    if (gap > 1e-24 * length) m.edge_midpoints[{p, q}] = {mid[0], mid[1], mid[2]};
+    m.set_edge_midpoint(p, q, mid);
   }
   // The map (r, theta, s) -> x has det = r (a x b = e): orientation kept; check anyway.
   for (int c = 0; c < m.n_cells(); ++c)
