@@ -225,6 +225,10 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
       header += fmt::format("# backend {} options: {}\n", s, solvers::compact_options(s));
     for (const auto& opt : o.petsc_options) header += "# petsc option: " + opt + "\n";
     header += "# newton forcing: " + (o.forcing.empty() ? std::string("as each scene sets it") : o.forcing) + "\n";
+    header += "# krylov rtol: " +
+              (o.krylov_rtol < 0 ? std::string("as each scene sets it (newton.krylov_rtol, else the backend's)")
+                                 : fmt::format("{:g}", o.krylov_rtol)) +
+              "\n";
     append_durably(runs_csv, header + kRunColumns);
     append_durably(out + "/steps.csv", header + kStepColumns);
   }
@@ -252,6 +256,7 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
     std::vector<std::string> argv{exe, "solve", run.scene, "--level", std::to_string(run.level), "--solver", run.solver,
                                   "--out", run_dir, "--quiet", "--no-vtu", "--metrics", run_dir + "/metrics.toml"};
     if (!o.forcing.empty()) argv.insert(argv.end(), {"--forcing", o.forcing});
+    if (o.krylov_rtol >= 0) argv.insert(argv.end(), {"--krylov-rtol", fmt::format("{:g}", o.krylov_rtol)});
     if (o.quick) argv.push_back("--quick");
     for (size_t k = 0; k < o.petsc_options.size(); ++k)
       if (o.petsc_options[k].rfind("-" + solvers::options_prefix(run.solver), 0) == 0) {

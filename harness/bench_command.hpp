@@ -22,6 +22,7 @@ struct BenchOptions {
   double memory_limit_mb = 0;        // 0: 90% of the machine's memory
   std::vector<std::string> petsc_options;  // "-prefix_key value" pairs, forwarded by prefix
   std::string forcing;                     // Newton forcing for every run (empty: the scene's)
+  double krylov_rtol = -1;                 // Krylov tolerance for every run (< 0: the scene's)
 };
 
 void run_bench(const BenchOptions& options, const RunInfo& info);

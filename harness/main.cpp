@@ -101,6 +101,11 @@ int main(int argc, char** argv) {
   solve_cmd->add_option("--record", solve.record_dir, "record every Newton system here (see `stiction replay`)");
   solve_cmd->add_option("--forcing", solve.forcing, "Krylov tolerance per Newton step: fixed or eisenstat-walker")
       ->check(CLI::IsMember({"fixed", "eisenstat-walker"}));
+  solve_cmd
+      ->add_option("--krylov-rtol", solve.krylov_rtol,
+                   "relative tolerance of every Krylov solve, overriding the scene's newton.krylov_rtol (0: the "
+                   "backend's -ksp_rtol)")
+      ->check(CLI::Range(0.0, 1.0));
   bool no_vtu = false;
   solve_cmd->add_flag("--no-vtu", no_vtu, "do not write VTU/PVD output");
   solve_cmd->add_option("--until", solve.until, "stop after the load step that reaches this pseudo-time")
@@ -132,6 +137,10 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--memory-limit-mb", bench.memory_limit_mb, "resident-memory limit per run (default 90% of RAM)");
   bench_cmd->add_option("--forcing", bench.forcing, "Newton forcing for every run: fixed or eisenstat-walker")
       ->check(CLI::IsMember({"fixed", "eisenstat-walker"}));
+  bench_cmd
+      ->add_option("--krylov-rtol", bench.krylov_rtol,
+                   "Krylov tolerance for every run (stiction solve --krylov-rtol; default: each scene's)")
+      ->check(CLI::Range(0.0, 1.0));
   std::string report_dir;
   auto* report_cmd = app.add_subcommand("report", "rebuild report.md of a sweep from its CSV files");
   report_cmd->add_option("dir", report_dir, "the sweep's output directory")->required();
@@ -158,7 +167,11 @@ int main(int argc, char** argv) {
     return static_cast<int>(e.kind());
   }
 
+  // argv[argc] is a null pointer (C 5.1.2.2.1): Open MPI's MPI_Init walks the array to it,
+  // and without one it read past the end (a crash inside MPI_Init whenever a PETSc option
+  // was given, depending on what lay after the vector).
   int petsc_argc = static_cast<int>(petsc_argv.size());
+  petsc_argv.push_back(nullptr);
   char** petsc_args = petsc_argv.data();
   try {
     PetscSession petsc(&petsc_argc, &petsc_args);

@@ -42,6 +42,15 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   const auto t_start = std::chrono::steady_clock::now();
   auto scene = open_scene(o.scene, o.level);
   if (!o.forcing.empty()) scene->newton.forcing = nonlinear::forcing_from_string(o.forcing);
+  // Precedence of the Krylov tolerance: --krylov-rtol, then a -<backend>_ksp_rtol given on
+  // the command line, then the scene's newton.krylov_rtol, then the backend's options file.
+  std::string krylov_rtol_origin = "scene";
+  if (o.krylov_rtol >= 0) {
+    scene->newton.krylov_rtol = o.krylov_rtol;
+    krylov_rtol_origin = "--krylov-rtol";
+  } else if (o.petsc_options.find("-" + solvers::options_prefix(o.solver) + "ksp_rtol ") != std::string::npos) {
+    scene->newton.krylov_rtol = 0;
+  }
   auto solver = solvers::create_solver(o.solver, PETSC_COMM_WORLD);
   const bool restart = !o.restart_dir.empty();
   std::string out_dir = o.out_dir.empty() ? fmt::format("out/{}-L{}", scene->name, scene->level) : o.out_dir;
@@ -66,9 +75,12 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   header += fmt::format("# mesh: {} vertices, {} cells; unknowns: u_l {}, u_q {}, total {}\n", scene->mesh.n_vertices(),
                         scene->mesh.n_cells(), space.linear_block().second - space.linear_block().first,
                         space.quadratic_block().second - space.quadratic_block().first, space.n_dofs());
-  header += fmt::format("# solver: {}; newton atol {:g}, rtol {:g}, max_iterations {}, forcing {}\n", o.solver,
-                        scene->newton.atol, scene->newton.rtol, scene->newton.max_iterations,
-                        nonlinear::to_string(scene->newton.forcing));
+  header += fmt::format("# solver: {}; newton atol {:g}, rtol {:g}, max_iterations {}, forcing {}, krylov rtol {}\n",
+                        o.solver, scene->newton.atol, scene->newton.rtol, scene->newton.max_iterations,
+                        nonlinear::to_string(scene->newton.forcing),
+                        scene->newton.krylov_rtol > 0
+                            ? fmt::format("{:g} ({})", scene->newton.krylov_rtol, krylov_rtol_origin)
+                            : std::string("the backend's"));
   if (restart)
     header += fmt::format("# restarted from '{}' after load step {} (t = {:g})\n", o.restart_dir, resume.state.step,
                           resume.state.time);

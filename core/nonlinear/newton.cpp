@@ -534,8 +534,10 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
       // loose solves (eta up to 0.9) make the states flip. Measured on hertz-cylinder-2d
       // level 1 with schur-amg: uncapped, 25 iterations and 953 state changes without
       // converging; so eta never exceeds the fixed default there.
-      if (!lambda_.empty()) eta = std::min(eta, kContactForcingCap);
+      if (!lambda_.empty()) eta = std::min(eta, settings_.krylov_rtol > 0 ? settings_.krylov_rtol : kContactForcingCap);
       linear_.set_relative_tolerance(eta);
+    } else if (settings_.krylov_rtol > 0) {
+      linear_.set_relative_tolerance(settings_.krylov_rtol);
     }
     rec.linear = linear_.solve(system_, du);
     if (observer_) observer_(system_, du, rec.linear, step, it + 1);

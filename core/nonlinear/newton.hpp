@@ -57,6 +57,10 @@ struct NewtonSettings {
   int max_backtracks = 10;      // step halvings when a trial state inverts a cell or is NaN
   double divergence_factor = 1e8;  // residual above this times r_ref: diverged
   Forcing forcing = Forcing::Fixed;
+  // Relative tolerance of every Krylov solve under the fixed forcing, in place of the
+  // backend's -ksp_rtol; under Eisenstat-Walker with contact, the cap on its forcing term
+  // (0: the backend's -ksp_rtol, and the cap kContactForcingCap).
+  double krylov_rtol = 0;
   int max_cuts = 6;             // halvings of a failed load increment (0: a failed step stops the run)
   ActiveSetSettings active_set;
 };

@@ -156,6 +156,10 @@ struct Schemas {
                 std::int64_t{10}},
                {"forcing", VT::String, "Krylov tolerance per Newton step (inexact Newton)", false, std::string("fixed"),
                 {"fixed", "eisenstat-walker"}},
+               {"krylov_rtol", VT::Float,
+                "relative tolerance of every Krylov solve, in place of the backend's -ksp_rtol (0: the backend's; "
+                "with eisenstat-walker, the cap on its forcing term under contact)",
+                false, 0.0},
                {"state_update_tolerance", VT::Float,
                 "contact states change only at iterates that solve their states to this relative residual (0: after "
                 "every solve, as the paper)",
@@ -696,6 +700,7 @@ std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& o
   s.newton.max_iterations = static_cast<int>(get_int(nw, S.newton, "max_iterations"));
   s.newton.max_backtracks = static_cast<int>(get_int(nw, S.newton, "max_backtracks"));
   s.newton.forcing = nonlinear::forcing_from_string(get_string(nw, S.newton, "forcing"));
+  s.newton.krylov_rtol = get_float(nw, S.newton, "krylov_rtol");
   auto& as = s.newton.active_set;
   as.update_tolerance = get_float(nw, S.newton, "state_update_tolerance");
   as.max_held = static_cast<int>(get_int(nw, S.newton, "max_held_iterations"));
@@ -703,8 +708,9 @@ std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& o
   as.remedy_factor = get_float(nw, S.newton, "cycle_remedy_factor");
   s.newton.max_cuts = static_cast<int>(get_int(sub(root, "load"), S.load, "max_cuts"));
   if (const auto quick = sub(root, "load")["quick_until"].value<double>()) s.quick_until = *quick;
-  if (!(s.newton.atol >= 0 && s.newton.rtol >= 0 && s.newton.max_iterations >= 1))
-    throw Error(fmt::format("{}: newton tolerances must be >= 0 and max_iterations >= 1", origin));
+  if (!(s.newton.atol >= 0 && s.newton.rtol >= 0 && s.newton.max_iterations >= 1 && s.newton.krylov_rtol >= 0 &&
+        s.newton.krylov_rtol < 1))
+    throw Error(fmt::format("{}: newton tolerances must be >= 0 (krylov_rtol below 1) and max_iterations >= 1", origin));
   if (!(as.update_tolerance >= 0 && as.max_held >= 0 && as.cycle_remedies >= 0 && as.remedy_factor > 0 &&
         as.remedy_factor < 1 && s.newton.max_cuts >= 0))
     throw Error(fmt::format("{}: newton.state_update_tolerance, max_held_iterations, cycle_remedies and load.max_cuts "

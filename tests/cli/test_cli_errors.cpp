@@ -545,6 +545,46 @@ TEST_F(StictionCli, RunHeaderNamesTheRevisionTheBinaryWasBuiltFrom) {
   EXPECT_TRUE(found) << "no git revision line in steps.csv";
 }
 
+// The Krylov tolerance of a run: --krylov-rtol first, then a -<backend>_ksp_rtol given on the
+// command line, then the scene's newton.krylov_rtol, then the backend's options file (1e-4).
+// The run header says which applies, and the solves meet it.
+TEST_F(StictionCli, KrylovToleranceComesFromTheCommandLineThenTheSceneThenTheBackend) {
+  const fs::path scene = SceneVariant().append("\n[newton]\nkrylov_rtol = 1e-7\n").write(dir_, "tight.toml");
+  auto header_line = [&](const std::string& out) {
+    std::ifstream steps(dir_ / out / "steps.csv");
+    for (std::string line; std::getline(steps, line);)
+      if (line.rfind("# solver: ", 0) == 0) return line;
+    return std::string("no solver line in ") + out + "/steps.csv";
+  };
+  auto worst_relative_residual = [&](const std::string& out) {
+    const auto rows = stiction::harness::read_csv((dir_ / out / "iterations.csv").string()).rows;
+    EXPECT_FALSE(rows.empty()) << out;
+    double worst = 0;
+    for (const auto& row : rows) worst = std::max(worst, stiction::harness::number(row, "linear_relative_residual"));
+    return worst;
+  };
+  const std::vector<std::string> common{"solve", scene.string(), "--solver", "schur-amg", "--quiet", "--no-vtu"};
+  auto with = [&](std::vector<std::string> more) {
+    std::vector<std::string> args = common;
+    args.insert(args.end(), more.begin(), more.end());
+    return args;
+  };
+
+  ASSERT_EQ(CliRun::of(with({"--out", "scene"}), dir_).exit_code, 0);
+  EXPECT_NE(header_line("scene").find("krylov rtol 1e-07 (scene)"), std::string::npos) << header_line("scene");
+  EXPECT_LE(worst_relative_residual("scene"), 1e-7);
+
+  const CliRun option = CliRun::of(with({"--out", "option", "-schur_amg_ksp_rtol", "1e-3"}), dir_);
+  ASSERT_EQ(option.exit_code, 0) << option.err;
+  EXPECT_NE(header_line("option").find("krylov rtol the backend's"), std::string::npos) << header_line("option");
+  EXPECT_GT(worst_relative_residual("option"), 1e-7) << "the command line's 1e-3 applies";
+
+  ASSERT_EQ(CliRun::of(with({"--out", "flag", "--krylov-rtol", "1e-5", "-schur_amg_ksp_rtol", "1e-3"}), dir_).exit_code, 0);
+  EXPECT_NE(header_line("flag").find("krylov rtol 1e-05 (--krylov-rtol)"), std::string::npos) << header_line("flag");
+  EXPECT_LE(worst_relative_residual("flag"), 1e-5);
+  EXPECT_GT(worst_relative_residual("flag"), 1e-7);
+}
+
 // With a memory limit in the environment (as `stiction bench` sets for its runs), the
 // MUMPS backends compare MUMPS's estimate after analysis with what the process may still
 // use and refuse a factorisation that would not fit: a named failure with the estimate,

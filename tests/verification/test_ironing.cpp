@@ -1,11 +1,15 @@
 // The shallow ironing (built-in scenes ironing-2d and ironing-2d-frictionless, level 0):
 // the force on the indenter at the end of the pressing phase against the published band,
-// and the contact-state gate of the Newton driver that makes its first contact converge.
+// the contact-state gate of the Newton driver that makes its first contact converge, and
+// the Krylov tolerance that keeps schur-amg on the exact Newton path while it slides.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
 
 #include "builtin_scenes.hpp"
+#include "checkpoint.hpp"
 #include "registry.hpp"
 #include "support/solve_scene.hpp"
 
@@ -91,6 +95,58 @@ TEST(Ironing, StateUpdateGateRemovesTheSlidingContactCycle) {
   });
   EXPECT_FALSE(every_solve.steps.back().converged());
   EXPECT_EQ(every_solve.steps.back().reason, nonlinear::NewtonReason::DivergedActiveSetCycle);
+}
+
+// One load step of ironing-2d at level 0 with schur-amg, restarted from the state after load
+// step 145 (t = 1.675) that tests/data/ironing-2d-L0-t1.675-checkpoint.bin holds
+// (scripts/make-ironing-checkpoint.sh), at the scene's Krylov tolerance or at the given one
+// (0: the backend's 1e-4).
+nonlinear::StepResult step_146_of_schur_amg(std::optional<double> krylov_rtol = {}) {
+  const auto scene = scene::build_scene(harness::builtin_scenes().at("ironing-2d"), "ironing", ".", 0);
+  if (krylov_rtol) scene->newton.krylov_rtol = *krylov_rtol;
+  else EXPECT_DOUBLE_EQ(scene->newton.krylov_rtol, 1e-6);
+  scene->newton.max_cuts = 0;
+  const harness::Checkpoint start =
+      harness::read_checkpoint(std::string(STICTION_TEST_DATA) + "/ironing-2d-L0-t1.675-checkpoint.bin");
+  auto solver = solvers::create_solver("schur-amg", PETSC_COMM_WORLD);
+  nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, scene->problem, scene->newton, *solver);
+  newton.restore(start.state);
+  EXPECT_EQ(start.state.step, 145);
+  const auto steps = newton.run({}, 146, 146);
+  EXPECT_EQ(steps.size(), 1u);
+  return steps.back();
+}
+
+// |F_master + F_slave| / |F_slave|: the traction integrated over the slab's contact surface
+// against the multiplier's integral over the indenter's (F5 against F3, which agree at a
+// well-resolved solution).
+double force_mismatch(const nonlinear::StepResult& r) {
+  const auto slave = r.contact.at(0).force, master = r.surface_forces.at("ironing/master");
+  return std::hypot(master[0] + slave[0], master[1] + slave[1]) / std::hypot(slave[0], slave[1]);
+}
+
+// At t = 1.68 the frictional sliding meets a nearly singular tangent. lu-mumps's Newton path
+// keeps 28 slipping and 30 free slave nodes and converges in 7 iterations with the slab's
+// surface traction within 0.3% of the multiplier's force. schur-amg at the backends' Krylov
+// tolerance 1e-4 leaves that path at the second iteration (residual 9.9 where lu-mumps has
+// 4.8) and, after 18 iterations, converges to another solution: one slave node on the front
+// fillet lifted off (gap 7e-4) inside the slip zone, the slab's traction 29% off the
+// multiplier's; every cut of the next step then converged into a folded slab cell. The
+// scene's Krylov tolerance 1e-6 keeps schur-amg on lu-mumps's path.
+TEST(Ironing, TightKrylovToleranceKeepsTheExactPathWhereSlidingBranches) {
+  const auto tight = step_146_of_schur_amg();
+  ASSERT_TRUE(tight.converged()) << tight.detail;
+  EXPECT_DOUBLE_EQ(tight.time, 1.68);
+  EXPECT_EQ(tight.contact.at(0).slip, 28);
+  EXPECT_EQ(tight.contact.at(0).inactive, 30);
+  EXPECT_LT(force_mismatch(tight), 0.01);
+  EXPECT_LE(tight.iterations.size(), 8u);
+  for (const auto& it : tight.iterations)
+    EXPECT_LE(it.linear.final_residual, 1e-6 * it.linear.initial_residual) << "the scene's tolerance applies";
+
+  const auto loose = step_146_of_schur_amg(0);
+  ASSERT_TRUE(loose.converged()) << loose.detail;
+  EXPECT_GT(force_mismatch(loose), 0.1) << "the other solution of the increment";
 }
 
 }  // namespace
