@@ -139,7 +139,7 @@ bool expect_same_solution(const std::string& scene_name, const std::string& back
   //   * boomeramg, one V-cycle on the whole saddle-point system (zero diagonal on the
   //     multiplier rows), on most contact scenes;
   //   * ilu-gmres, ILU(0) in GMRES(100): out of iterations on the thin 3D tubes (step 1) and
-  //     on the frictional ironing's first sliding step (step 11).
+  //     on both ironing scenes at their Krylov tolerance 1e-6 (at the first contact).
   // Backends made for one kind of system refuse the other kind at set-up and say why: gamg
   // every system with a multiplier block (a saddle point), fieldsplit-schur every system
   // without a block to split off (none of these scenes has a pressure field).
@@ -150,7 +150,7 @@ bool expect_same_solution(const std::string& scene_name, const std::string& back
   }
   const bool known_to_stop =
       ref.contact && (backend == "boomeramg" ||
-                      (backend == "ilu-gmres" && (scene_name == "crossed-tubes-3d" || scene_name == "ironing-2d")));
+                      (backend == "ilu-gmres" && (scene_name == "crossed-tubes-3d" || scene_name.rfind("ironing-2d", 0) == 0)));
   if (known_to_stop && !r.failure.empty()) {
     EXPECT_NE(r.failure.find("DIVERGED_LINEAR_SOLVE"), std::string::npos) << r.failure;
     std::printf("%s does not converge on this contact system: %s\n", backend.c_str(), r.failure.c_str());
