@@ -60,16 +60,6 @@ int count_data_lines(const std::string& path) {
   return std::max(n, 0);
 }
 
-// Status of a finished child, from how it ended.
-std::string status_of(const ChildResult& c, bool have_metrics) {
-  if (c.hit_memory_limit) return "memory-limit";
-  if (c.hit_time_limit) return "time-limit";
-  if (c.signal) return c.signal == 9 ? "killed (signal 9; out of memory?)" : fmt::format("killed (signal {})", c.signal);
-  if (c.exit_code == 0 && have_metrics) return "ok";
-  if (c.exit_code == 3 && have_metrics) return "newton-failed";
-  return "error";
-}
-
 void write_rows(const std::string& out, const Run& run, const ChildResult& child, const std::string& run_dir) {
   const std::string metrics_path = run_dir + "/metrics.toml";
   toml::table metrics;
@@ -81,7 +71,7 @@ void write_rows(const std::string& out, const Run& run, const ChildResult& child
       have_metrics = false;
     }
   }
-  const std::string status = status_of(child, have_metrics);
+  const std::string status = solve_status(child, have_metrics);
   const toml::table empty;
   const toml::table& m = have_metrics && metrics["run"].as_table() ? *metrics["run"].as_table() : empty;
   auto num = [&](const char* k) { return m[k].value<double>().value_or(0.0); };
@@ -276,9 +266,9 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
       }
     });
     write_rows(out, run, child, run_dir);
-    if (status_of(child, fs::exists(run_dir + "/metrics.toml")) == "ok") finished_seconds[run.key()] = child.wall_seconds;
+    if (solve_status(child, fs::exists(run_dir + "/metrics.toml")) == "ok") finished_seconds[run.key()] = child.wall_seconds;
     fmt::print(stderr, "bench [{}/{}] {} {} L{}: {} in {:.1f} s, peak {:.0f} MB\n", index, runs.size(), run.scene,
-               run.solver, run.level, status_of(child, fs::exists(run_dir + "/metrics.toml")), child.wall_seconds,
+               run.solver, run.level, solve_status(child, fs::exists(run_dir + "/metrics.toml")), child.wall_seconds,
                child.peak_rss_mb);
     write_bench_report(out);
   }

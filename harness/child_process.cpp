@@ -89,4 +89,13 @@ ChildResult run_child(const std::vector<std::string>& argv, const std::string& s
   return r;
 }
 
+std::string solve_status(const ChildResult& c, bool have_metrics) {
+  if (c.hit_memory_limit) return "memory-limit";
+  if (c.hit_time_limit) return "time-limit";
+  if (c.signal) return c.signal == 9 ? "killed (signal 9; out of memory?)" : fmt::format("killed (signal {})", c.signal);
+  if (c.exit_code == 0 && have_metrics) return "ok";
+  if (c.exit_code == 3 && have_metrics) return "newton-failed";
+  return "error";
+}
+
 }  // namespace stiction::harness

@@ -29,6 +29,10 @@ ChildResult run_child(const std::vector<std::string>& argv, const std::string& s
                       const std::string& stderr_path, const ChildLimits& limits,
                       const std::function<void(double)>& on_tick = {});
 
+// Status of a finished `stiction solve` child, from how it ended and whether it wrote its
+// metrics: ok, newton-failed (exit 3), time-limit, memory-limit, killed (signal N), error.
+std::string solve_status(const ChildResult& c, bool have_metrics);
+
 // Path of the running executable (/proc/self/exe).
 std::string self_executable();
 // Physical memory of the machine in MB.

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include <cctype>
+#include <filesystem>
 #include <set>
 
 #include "bench_command.hpp"
@@ -22,6 +23,8 @@
 #include "scene/scene.hpp"
 #include "replay_command.hpp"
 #include "solve_command.hpp"
+#include "tradeoff_command.hpp"
+#include "tradeoff_report.hpp"
 
 using namespace stiction;
 
@@ -106,6 +109,10 @@ int main(int argc, char** argv) {
                    "relative tolerance of every Krylov solve, overriding the scene's newton.krylov_rtol (0: the "
                    "backend's -ksp_rtol)")
       ->check(CLI::Range(0.0, 1.0));
+  solve_cmd
+      ->add_option("--newton-rtol", solve.newton_rtol,
+                   "Newton tolerance relative to each step's reference residual, overriding the scene's newton.rtol")
+      ->check(CLI::Range(0.0, 1.0));
   bool no_vtu = false;
   solve_cmd->add_flag("--no-vtu", no_vtu, "do not write VTU/PVD output");
   solve_cmd->add_option("--until", solve.until, "stop after the load step that reaches this pseudo-time")
@@ -141,6 +148,25 @@ int main(int argc, char** argv) {
       ->add_option("--krylov-rtol", bench.krylov_rtol,
                    "Krylov tolerance for every run (stiction solve --krylov-rtol; default: each scene's)")
       ->check(CLI::Range(0.0, 1.0));
+  harness::TradeoffOptions tradeoff;
+  auto* tradeoff_cmd = app.add_subcommand("tradeoff", "speed against accuracy: knobs swept against a tight reference");
+  tradeoff_cmd->add_option("scene", tradeoff.scene, "scene file (.toml) or built-in scene name")->required();
+  tradeoff_cmd->add_option("--level", tradeoff.level, "mesh level")->check(CLI::Range(0, 4));
+  tradeoff_cmd->add_option("--solvers", tradeoff.solvers, "backends (comma separated; default schur-amg)")->delimiter(',');
+  tradeoff_cmd->add_option("--newton-rtols", tradeoff.newton_rtols, "Newton tolerances (default 1e-4,1e-6,1e-8)")
+      ->delimiter(',');
+  tradeoff_cmd->add_option("--krylov-rtols", tradeoff.krylov_rtols,
+                           "Krylov tolerances of the iterative backends (default 1e-2,1e-4,1e-6,1e-8)")
+      ->delimiter(',');
+  tradeoff_cmd->add_option("--forcings", tradeoff.forcings, "fixed and/or eisenstat-walker (default fixed)")
+      ->delimiter(',');
+  tradeoff_cmd->add_option("--reference-solver", tradeoff.reference_solver, "backend of the reference (lu-mumps)");
+  tradeoff_cmd->add_option("--reference-newton-rtol", tradeoff.reference_newton_rtol,
+                           "Newton tolerance of the reference (1e-12)");
+  tradeoff_cmd->add_option("--out", tradeoff.out_dir, "output directory (tradeoff.csv, report.md, runs/)");
+  tradeoff_cmd->add_flag("--resume", tradeoff.resume, "continue a sweep: skip the runs already in tradeoff.csv");
+  tradeoff_cmd->add_option("--time-limit", tradeoff.time_limit_seconds, "wall-time limit per run, seconds (3600)");
+  tradeoff_cmd->add_option("--memory-limit-mb", tradeoff.memory_limit_mb, "resident-memory limit per run (90% of RAM)");
   std::string report_dir;
   auto* report_cmd = app.add_subcommand("report", "rebuild report.md of a sweep from its CSV files");
   report_cmd->add_option("dir", report_dir, "the sweep's output directory")->required();
@@ -159,7 +185,8 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*report_cmd) {
-      harness::write_bench_report(report_dir);
+      if (std::filesystem::exists(report_dir + "/tradeoff.csv")) harness::write_tradeoff_report(report_dir);
+      else harness::write_bench_report(report_dir);
       return 0;
     }
   } catch (const Error& e) {
@@ -181,6 +208,10 @@ int main(int argc, char** argv) {
       solve.write_vtu = !no_vtu;
       harness::run_solve(solve, harness::collect_run_info(argc, argv));
       reject_unused(petsc_given);
+    }
+    if (*tradeoff_cmd) {
+      tradeoff.petsc_options = petsc_pairs;
+      harness::run_tradeoff(tradeoff, harness::collect_run_info(argc, argv));
     }
     if (*replay_cmd) {
       harness::run_replay(replay, harness::collect_run_info(argc, argv));

@@ -18,13 +18,19 @@ struct Point {
   double n, seconds_per_solve, peak_mb, krylov;
 };
 
-void write_file(const std::string& path, const std::string& text) {
+}  // namespace
+
+void write_text_file(const std::string& path, const std::string& text) {
   std::ofstream f(path);
   f << text;
   if (!f) throw Error(fmt::format("cannot write '{}'", path));
 }
 
-}  // namespace
+bool draw_with_gnuplot(const std::string& dir, const std::string& stem) {
+  const int rc = std::system(fmt::format("cd '{}' && gnuplot '{}.gp' > '{}.log' 2>&1", dir, stem, stem).c_str());
+  if (rc == 0) std::remove((dir + "/" + stem + ".log").c_str());
+  return rc == 0;
+}
 
 double log_log_slope(const std::vector<double>& x, const std::vector<double>& y) {
   std::vector<double> lx, ly;
@@ -79,7 +85,7 @@ std::string scaling_section(const CsvTable& runs, const std::string& scene, cons
     ++block;
   }
   const std::string stem = scene + "-growth";
-  write_file(out_dir + "/" + stem + ".dat", data);
+  write_text_file(out_dir + "/" + stem + ".dat", data);
   const std::string script = fmt::format(
       "# Redraw with: gnuplot {0}.gp (in this directory)\n"
       "data = '{0}.dat'\n"
@@ -93,14 +99,11 @@ std::string scaling_section(const CsvTable& runs, const std::string& scene, cons
       "unset logscale\nset xlabel 'mesh level'\nset xtics 1\nset ylabel 'Krylov iterations per Newton step'\n"
       "set output '{1}-krylov.svg'\nset title '{1}: Krylov iterations per Newton step'\n{4}\n",
       stem, scene, time_plot, memory_plot, krylov_plot);
-  write_file(out_dir + "/" + stem + ".gp", script);
-  const int rc =
-      std::system(fmt::format("cd '{}' && gnuplot '{}.gp' > '{}.log' 2>&1", out_dir, stem, stem).c_str());
-  if (rc != 0)
+  write_text_file(out_dir + "/" + stem + ".gp", script);
+  if (!draw_with_gnuplot(out_dir, stem))
     return md + fmt::format("\nPlots not drawn: gnuplot failed or is missing (see `{}.log`; "
                             "`scripts/ensure-gnuplot.sh` installs it); `{}.gp` draws them.\n",
                             stem, stem);
-  std::remove((out_dir + "/" + stem + ".log").c_str());
   return md + fmt::format("\n![time per linear solve]({0}-time-per-solve.svg) ![peak memory]({0}-peak-memory.svg) "
                           "![Krylov iterations]({0}-krylov.svg)\n",
                           scene);

@@ -13,6 +13,11 @@
 
 namespace stiction::harness {
 
+void write_text_file(const std::string& path, const std::string& text);  // throws when it cannot
+// Runs `gnuplot <stem>.gp` in dir; false (its output kept in <stem>.log) when gnuplot is
+// missing or fails.
+bool draw_with_gnuplot(const std::string& dir, const std::string& stem);
+
 // Least-squares slope of log(y) against log(x) over the points with x, y > 0; 0 with fewer
 // than two such points.
 double log_log_slope(const std::vector<double>& x, const std::vector<double>& y);

@@ -42,6 +42,7 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   const auto t_start = std::chrono::steady_clock::now();
   auto scene = open_scene(o.scene, o.level);
   if (!o.forcing.empty()) scene->newton.forcing = nonlinear::forcing_from_string(o.forcing);
+  if (o.newton_rtol >= 0) scene->newton.rtol = o.newton_rtol;
   // Precedence of the Krylov tolerance: --krylov-rtol, then a -<backend>_ksp_rtol given on
   // the command line, then the scene's newton.krylov_rtol, then the backend's options file.
   std::string krylov_rtol_origin = "scene";

@@ -585,6 +585,56 @@ TEST_F(StictionCli, KrylovToleranceComesFromTheCommandLineThenTheSceneThenTheBac
   EXPECT_GT(worst_relative_residual("flag"), 1e-7);
 }
 
+// The speed/accuracy sweep on a scene without contact, short: a lu-mumps reference with a
+// tight Newton tolerance, then schur-amg and lu-mumps at a loose Newton tolerance (1e-2)
+// with Krylov tolerances 1e-2 to 1e-6. What must hold whatever the tuning: every row ends
+// with a named status; at a fixed Newton tolerance the displacement error falls as the
+// Krylov tolerance tightens, until it meets that of exact solves at the same Newton
+// tolerance (lu-mumps); the report names the Pareto front and a recommendation, and
+// `stiction report` rebuilds it from the CSV alone.
+TEST_F(StictionCli, TradeoffErrorFallsWithTheKrylovToleranceUntilItMeetsTheNewtonTolerance) {
+  const CliRun sweep = CliRun::of({"tradeoff", "cantilever-2d", "--solvers", "schur-amg,lu-mumps", "--newton-rtols",
+                                   "1e-2", "--krylov-rtols", "1e-2,1e-4,1e-6", "--out", "sweep"},
+                                  dir_);
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+  const auto rows = stiction::harness::read_csv((dir_ / "sweep" / "tradeoff.csv").string()).rows;
+  ASSERT_EQ(rows.size(), 7u) << "reference, two defaults, three schur-amg settings, one lu-mumps setting";
+  EXPECT_EQ(rows.front().at("id"), "reference");
+  std::map<std::string, double> error;
+  for (const auto& row : rows) {
+    EXPECT_EQ(row.at("status"), "ok") << row.at("id") << ": " << row.at("detail");
+    if (row.at("id") != "reference") error[row.at("id")] = stiction::harness::number(row, "error_u_h1");
+  }
+  const double loose = error.at("schur-amg-fixed-newton0.01-krylov0.01"),
+               middle = error.at("schur-amg-fixed-newton0.01-krylov0.0001"),
+               tight = error.at("schur-amg-fixed-newton0.01-krylov1e-06"),
+               exact = error.at("lu-mumps-fixed-newton0.01");
+  EXPECT_GT(loose, 10 * tight);
+  EXPECT_GE(loose, middle);
+  EXPECT_GE(middle, tight);
+  EXPECT_NEAR(tight, exact, exact) << "at Krylov 1e-6 the Newton tolerance decides the error";
+  EXPECT_LT(error.at("lu-mumps-default"), 1e-9) << "the defaults (Newton 1e-8) against the reference";
+
+  const std::string report = read_file(dir_ / "sweep" / "report.md");
+  EXPECT_NE(report.find("## Pareto front"), std::string::npos);
+  EXPECT_NE(report.find("at most 0.01: `stiction solve cantilever-2d"), std::string::npos) << report;
+  fs::remove(dir_ / "sweep" / "report.md");
+  ASSERT_EQ(CliRun::of({"report", (dir_ / "sweep").string()}, dir_).exit_code, 0);
+  EXPECT_EQ(read_file(dir_ / "sweep" / "report.md"), report);
+
+  const CliRun again = CliRun::of({"tradeoff", "cantilever-2d", "--solvers", "schur-amg,lu-mumps", "--newton-rtols",
+                                   "1e-2", "--krylov-rtols", "1e-2,1e-4,1e-6", "--out", "sweep", "--resume"},
+                                  dir_);
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(stiction::harness::read_csv((dir_ / "sweep" / "tradeoff.csv").string()).rows.size(), 7u)
+      << "a resumed sweep reruns nothing that finished";
+
+  const CliRun unknown = CliRun::of({"tradeoff", "cantilever-2d", "--solvers", "no-such", "--out", "bad"}, dir_);
+  EXPECT_EQ(unknown.exit_code, 2);
+  ASSERT_EQ(unknown.error_lines().size(), 1u) << unknown.err;
+  EXPECT_NE(unknown.error_lines()[0].find("unknown solver backend 'no-such'"), std::string::npos);
+}
+
 // With a memory limit in the environment (as `stiction bench` sets for its runs), the
 // MUMPS backends compare MUMPS's estimate after analysis with what the process may still
 // use and refuse a factorisation that would not fit: a named failure with the estimate,

@@ -1,0 +1,92 @@
+#include "solution_accuracy.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <vector>
+
+#include "checkpoint.hpp"
+#include "common/error.hpp"
+#include "csv_table.hpp"
+#include "fem/error_norms.hpp"
+
+namespace stiction::harness {
+
+namespace {
+
+struct FinalState {
+  std::vector<double> u;
+  std::vector<double> contact_force;           // every pair's F3 components, in column order
+  double peak_pressure = 0;                    // largest lambda_n at the last step
+  std::map<std::string, std::string> states;   // "pair/node" -> state at the last step
+};
+
+FinalState read_final_state(const scene::Scene& scene, const std::string& dir) {
+  const Checkpoint c = read_checkpoint(dir + "/checkpoint.bin");
+  if (c.scene != scene.name || c.level != scene.level)
+    throw Error(fmt::format("'{}' holds a run of scene '{}' level {}, not '{}' level {}", dir, c.scene, c.level,
+                            scene.name, scene.level));
+  if (c.state.step != scene.problem.n_steps())
+    throw Error(fmt::format("the run in '{}' stopped after load step {} of {}", dir, c.state.step,
+                            scene.problem.n_steps()));
+  FinalState f;
+  f.u = c.state.u;
+  if (f.u.size() < static_cast<size_t>(scene.space->n_dofs()))
+    throw Error(fmt::format("'{}' holds {} displacement unknowns, the scene {}", dir, f.u.size(), scene.space->n_dofs()));
+  if (scene.contacts.empty()) return f;
+
+  const CsvTable steps = read_csv(dir + "/steps.csv");
+  const std::map<std::string, std::string>* last = nullptr;
+  for (const auto& row : steps.rows)
+    if (number(row, "converged") == 1) last = &row;
+  if (!last) throw Error(fmt::format("'{}/steps.csv' has no converged load step", dir));
+  for (const auto& column : steps.columns)
+    if (column.rfind("contact_", 0) == 0 && column.find("_force_") != std::string::npos)
+      f.contact_force.push_back(number(*last, column));
+
+  const CsvTable contact = read_csv(dir + "/contact.csv");
+  const std::string final_step = contact.rows.empty() ? "" : contact.rows.back().at("step");
+  for (const auto& row : contact.rows) {
+    if (row.at("step") != final_step) continue;
+    f.peak_pressure = std::max(f.peak_pressure, number(row, "lambda_n"));
+    f.states[row.at("pair") + "/" + row.at("node")] = row.at("state");
+  }
+  return f;
+}
+
+double relative(double error, double reference) { return reference > 0 ? error / reference : error; }
+
+}  // namespace
+
+SolutionAccuracy compare_to_reference(const scene::Scene& scene, const std::string& run_dir,
+                                      const std::string& reference_dir) {
+  const FinalState run = read_final_state(scene, run_dir), ref = read_final_state(scene, reference_dir);
+  SolutionAccuracy a;
+  std::vector<double> difference(ref.u.size());
+  for (size_t i = 0; i < difference.size(); ++i) difference[i] = run.u[i] - ref.u[i];
+  // The norms of a discrete field: its error against zero.
+  const auto zero = [](const double*, double* out) { std::fill(out, out + 3, 0.0); };
+  const auto zero_gradient = [](const double*, double* out) { std::fill(out, out + 9, 0.0); };
+  const fem::ErrorNorms error = fem::compute_errors(*scene.space, difference, zero, zero_gradient);
+  const fem::ErrorNorms size = fem::compute_errors(*scene.space, ref.u, zero, zero_gradient);
+  a.displacement_l2 = relative(error.l2, size.l2);
+  a.displacement_h1 = relative(error.h1_seminorm, size.h1_seminorm);
+  a.contact = !scene.contacts.empty();
+  if (!a.contact) return a;
+  double force_error = 0, force_size = 0;
+  for (size_t k = 0; k < ref.contact_force.size() && k < run.contact_force.size(); ++k) {
+    force_error += std::pow(run.contact_force[k] - ref.contact_force[k], 2);
+    force_size += std::pow(ref.contact_force[k], 2);
+  }
+  a.contact_force = relative(std::sqrt(force_error), std::sqrt(force_size));
+  a.peak_pressure = relative(std::abs(run.peak_pressure - ref.peak_pressure), ref.peak_pressure);
+  for (const auto& [node, state] : ref.states) {
+    const auto it = run.states.find(node);
+    a.state_changes += it == run.states.end() || it->second != state;
+  }
+  return a;
+}
+
+}  // namespace stiction::harness

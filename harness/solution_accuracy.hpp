@@ -1,0 +1,27 @@
+#pragma once
+// How far one run's final state lies from a reference run's on the same scene and mesh
+// (the trade-off sweep's accuracy, never a proxy such as a residual): the displacement in
+// the L2 norm and the H1 seminorm, the contact force, the peak contact pressure and the
+// contact states at the last load step, each relative to the reference.
+#include <string>
+
+#include "scene/scene.hpp"
+
+namespace stiction::harness {
+
+struct SolutionAccuracy {
+  double displacement_l2 = 0;   // ||u - u_ref||_L2 / ||u_ref||_L2
+  double displacement_h1 = 0;   // |u - u_ref|_H1 / |u_ref|_H1
+  bool contact = false;         // the scene has contact pairs (the figures below are set)
+  double contact_force = 0;     // |F - F_ref| / |F_ref| over every pair's force (F3)
+  double peak_pressure = 0;     // |max lambda_n - max lambda_n,ref| / max lambda_n,ref
+  int state_changes = 0;        // slave nodes whose state (inactive / stick / slip) differs
+};
+
+// run_dir and reference_dir are `stiction solve` output directories of `scene` (their
+// checkpoint.bin, steps.csv and contact.csv) that both completed every load step. Throws
+// stiction::Error when either is missing, of another scene or level, or did not finish.
+SolutionAccuracy compare_to_reference(const scene::Scene& scene, const std::string& run_dir,
+                                      const std::string& reference_dir);
+
+}  // namespace stiction::harness

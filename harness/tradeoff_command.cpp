@@ -1,0 +1,238 @@
+#include "tradeoff_command.hpp"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "builtin_scenes.hpp"
+#include "child_process.hpp"
+#include "common/error.hpp"
+#include "csv_table.hpp"
+#include "ksp_solver.hpp"
+#include "registry.hpp"
+#include "solution_accuracy.hpp"
+#include "tradeoff_report.hpp"
+
+namespace stiction::harness {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// One configuration: a backend at its defaults (newton_rtol and krylov_rtol < 0, forcing
+// empty: the scene's and the backend's), or with the given knobs.
+struct Setting {
+  std::string solver, forcing;
+  double newton_rtol = -1, krylov_rtol = -1;
+  bool is_default() const { return forcing.empty() && newton_rtol < 0 && krylov_rtol < 0; }
+  std::string id() const {
+    if (is_default()) return solver + "-default";
+    std::string s = fmt::format("{}-{}-newton{:g}", solver, forcing, newton_rtol);
+    if (krylov_rtol >= 0) s += fmt::format("-krylov{:g}", krylov_rtol);
+    return s;
+  }
+  std::vector<std::string> arguments() const {
+    std::vector<std::string> a{"--solver", solver};
+    if (!forcing.empty()) a.insert(a.end(), {"--forcing", forcing});
+    if (newton_rtol >= 0) a.insert(a.end(), {"--newton-rtol", fmt::format("{:g}", newton_rtol)});
+    if (krylov_rtol >= 0) a.insert(a.end(), {"--krylov-rtol", fmt::format("{:g}", krylov_rtol)});
+    return a;
+  }
+};
+
+// A direct backend (one exact solve, no Krylov iterations) has no Krylov tolerance to vary.
+bool is_direct(const std::string& solver) {
+  return solvers::default_options(solver).find("-ksp_type preonly") != std::string::npos;
+}
+
+std::vector<Setting> settings_of(const TradeoffOptions& o) {
+  std::vector<Setting> all;
+  for (const auto& solver : o.solvers) {
+    all.push_back({solver, "", -1, -1});
+    for (const auto& forcing : is_direct(solver) ? std::vector<std::string>{"fixed"} : o.forcings)
+      for (double newton : o.newton_rtols) {
+        if (is_direct(solver)) {
+          all.push_back({solver, forcing, newton, -1});
+          continue;
+        }
+        for (double krylov : o.krylov_rtols) all.push_back({solver, forcing, newton, krylov});
+      }
+  }
+  return all;
+}
+
+struct RunCost {
+  std::string reason, detail;
+  double newton = 0, solves = 0, krylov = 0, linear_seconds = 0;
+  // The run's own wall time, from its start to its last output: the child's is counted by
+  // a 200 ms poll and holds the process's start-up.
+  double wall_seconds = 0;
+};
+
+RunCost read_cost(const std::string& metrics_path) {
+  RunCost c;
+  toml::table metrics;
+  try {
+    metrics = toml::parse_file(metrics_path);
+  } catch (const toml::parse_error&) {
+    return c;
+  }
+  const toml::table empty;
+  const toml::table& m = metrics["run"].as_table() ? *metrics["run"].as_table() : empty;
+  c.reason = m["reason"].value<std::string>().value_or("");
+  c.detail = m["detail"].value<std::string>().value_or("");
+  c.newton = m["newton_iterations"].value<double>().value_or(0);
+  c.solves = m["linear_solves"].value<double>().value_or(0);
+  c.krylov = m["krylov_iterations"].value<double>().value_or(0);
+  c.wall_seconds = m["wall_seconds"].value<double>().value_or(0);
+  c.linear_seconds = m["setup_seconds"].value<double>().value_or(0) + m["solve_seconds"].value<double>().value_or(0);
+  return c;
+}
+
+std::string last_line(const std::string& path) {
+  std::ifstream in(path);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  return last;
+}
+
+// Runs `stiction solve` for one setting into run_dir; returns its status.
+std::string solve_child(const TradeoffOptions& o, const std::vector<std::string>& setting_arguments,
+                        const std::string& run_dir, const ChildLimits& limits, ChildResult& child) {
+  std::error_code ec;
+  fs::remove_all(run_dir, ec);
+  fs::create_directories(run_dir, ec);
+  std::vector<std::string> argv{self_executable(), "solve", o.scene,  "--level",   std::to_string(o.level),
+                                "--out",           run_dir, "--quiet", "--no-vtu", "--metrics",
+                                run_dir + "/metrics.toml"};
+  argv.insert(argv.end(), setting_arguments.begin(), setting_arguments.end());
+  const std::string solver = setting_arguments.at(1);
+  for (const auto& option : o.petsc_options)
+    if (option.rfind("-" + solvers::options_prefix(solver), 0) == 0) {
+      std::istringstream words(option);
+      for (std::string w; words >> w;) argv.push_back(w);
+    }
+  child = run_child(argv, run_dir + "/stdout.txt", run_dir + "/stderr.txt", limits);
+  return solve_status(child, fs::exists(run_dir + "/metrics.toml"));
+}
+
+std::string number_or_blank(double x, bool set) { return set ? fmt::format("{:.3e}", x) : ""; }
+
+// One row of tradeoff.csv (kTradeoffColumns); accuracy null: not measured.
+std::string row_of(const scene::Scene& scene, const std::string& id, const Setting& s, const std::string& status,
+                   const RunCost& cost, const ChildResult& child, const SolutionAccuracy* accuracy,
+                   const std::string& detail) {
+  const bool contact = accuracy && accuracy->contact;
+  return fmt::format(
+      "{},{},{},{},{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.3f},{:.3f},{:.1f},{},{},{},{},{},{}", scene.name,
+      scene.level, id, s.solver, s.forcing, s.newton_rtol >= 0 ? fmt::format("{:g}", s.newton_rtol) : "",
+      s.krylov_rtol >= 0 ? fmt::format("{:g}", s.krylov_rtol) : "", s.is_default() ? 1 : 0, status,
+      csv_field(cost.reason.empty() ? status : cost.reason), cost.newton, cost.solves, cost.krylov,
+      cost.wall_seconds > 0 ? cost.wall_seconds : child.wall_seconds,
+      cost.linear_seconds, child.peak_rss_mb, number_or_blank(accuracy ? accuracy->displacement_l2 : 0, accuracy),
+      number_or_blank(accuracy ? accuracy->displacement_h1 : 0, accuracy),
+      number_or_blank(contact ? accuracy->contact_force : 0, contact),
+      number_or_blank(contact ? accuracy->peak_pressure : 0, contact), contact ? std::to_string(accuracy->state_changes) : "",
+      csv_field(detail));
+}
+
+}  // namespace
+
+void run_tradeoff(const TradeoffOptions& o, const RunInfo& info) {
+  std::set<std::string> known;
+  for (const auto& b : solvers::backends()) known.insert(b.name);
+  for (const auto& s : o.solvers)
+    if (!known.count(s)) throw Error(fmt::format("unknown solver backend '{}' (valid: {})", s, solvers::backend_names()));
+  if (!known.count(o.reference_solver))
+    throw Error(fmt::format("unknown reference backend '{}' (valid: {})", o.reference_solver, solvers::backend_names()));
+  for (const auto& f : o.forcings)
+    if (f != "fixed" && f != "eisenstat-walker")
+      throw Error(fmt::format("unknown Newton forcing '{}' (accepted: fixed, eisenstat-walker)", f));
+  for (const auto& list : {o.newton_rtols, o.krylov_rtols})
+    for (double x : list)
+      if (!(x > 0 && x < 1)) throw Error(fmt::format("tolerance {:g} outside (0, 1)", x));
+  for (const auto& option : o.petsc_options) {
+    bool matches = false;
+    for (const auto& s : o.solvers) matches |= option.rfind("-" + solvers::options_prefix(s), 0) == 0;
+    if (!matches) throw Error(fmt::format("PETSc option '{}' matches none of the backends of this sweep", option));
+  }
+  const auto scene = open_scene(o.scene, o.level);  // bad input fails here, before any run
+
+  const std::string out = o.out_dir, csv = out + "/tradeoff.csv";
+  std::error_code ec;
+  fs::create_directories(fs::path(out) / "runs", ec);
+  if (ec) throw Error(fmt::format("cannot create '{}': {}", out, ec.message()));
+  std::set<std::string> done;
+  if (fs::exists(csv)) {
+    if (!o.resume) throw Error(fmt::format("'{}' exists: pass --resume to continue that sweep or choose another --out", csv));
+    const CsvTable previous = read_csv(csv);
+    std::string columns;
+    for (const auto& c : previous.columns) columns += (columns.empty() ? "" : ",") + c;
+    if (columns != kTradeoffColumns)
+      throw Error(fmt::format("'{}' has other columns than this stiction writes: start a new sweep in another --out", csv));
+    for (const auto& row : previous.rows) done.insert(row.at("id"));
+    append_durably(csv, "# resumed: " + info.command_line + " at " + info.date + ", git " + info.git_revision);
+  } else {
+    std::string header = format_run_info(info, "# ");
+    header += fmt::format("# scene: {} level {} ({} unknowns)\n", scene->name, scene->level, scene->space->n_dofs());
+    header += fmt::format("# reference: {} with newton rtol {:g} and its exact solves\n", o.reference_solver,
+                          o.reference_newton_rtol);
+    header += fmt::format("# limits per run: {:.0f} s, {:.0f} MB resident\n", o.time_limit_seconds,
+                          o.memory_limit_mb > 0 ? o.memory_limit_mb : 0.9 * physical_memory_mb());
+    for (const auto& s : o.solvers) header += fmt::format("# backend {} options: {}\n", s, solvers::compact_options(s));
+    for (const auto& opt : o.petsc_options) header += "# petsc option: " + opt + "\n";
+    append_durably(csv, header + kTradeoffColumns);
+  }
+  const ChildLimits limits{o.time_limit_seconds, o.memory_limit_mb > 0 ? o.memory_limit_mb : 0.9 * physical_memory_mb()};
+  setenv("STICTION_MEMORY_LIMIT_MB", fmt::format("{:.0f}", limits.memory_mb).c_str(), 1);
+
+  // The reference: solved once, kept for --resume.
+  const std::string reference_dir = out + "/reference";
+  if (!fs::exists(reference_dir + "/checkpoint.bin") || !done.count("reference")) {
+    fmt::print(stderr, "tradeoff: reference ({} with newton rtol {:g})\n", o.reference_solver, o.reference_newton_rtol);
+    ChildResult child;
+    const std::string status =
+        solve_child(o, {"--solver", o.reference_solver, "--newton-rtol", fmt::format("{:g}", o.reference_newton_rtol)},
+                    reference_dir, limits, child);
+    if (status != "ok")
+      throw Error(fmt::format("the reference run ({} with newton rtol {:g}) ended {}: {} (see {}/stderr.txt)",
+                              o.reference_solver, o.reference_newton_rtol, status,
+                              last_line(reference_dir + "/stderr.txt"), reference_dir),
+                  ErrorKind::Numerical);
+    if (!done.count("reference"))
+      append_durably(csv, row_of(*scene, "reference", {o.reference_solver, "fixed", o.reference_newton_rtol, -1}, status,
+                                 read_cost(reference_dir + "/metrics.toml"), child, nullptr, ""));
+    done.insert("reference");
+  }
+
+  const auto settings = settings_of(o);
+  int index = 0;
+  for (const Setting& s : settings) {
+    ++index;
+    if (done.count(s.id())) continue;
+    const std::string run_dir = (fs::path(out) / "runs" / s.id()).string();
+    ChildResult child;
+    const std::string status = solve_child(o, s.arguments(), run_dir, limits, child);
+    const RunCost cost = read_cost(run_dir + "/metrics.toml");
+    SolutionAccuracy a;
+    bool measured = false;
+    std::string detail = status == "ok" || status == "newton-failed" ? cost.detail : last_line(run_dir + "/stderr.txt");
+    if (status == "ok") {
+      a = compare_to_reference(*scene, run_dir, reference_dir);
+      measured = true;
+    }
+    const std::string row = row_of(*scene, s.id(), s, status, cost, child, measured ? &a : nullptr, detail);
+    append_durably(csv, row);
+    fmt::print(stderr, "tradeoff [{}/{}] {}: {} in {:.2f} s{}\n", index, settings.size(), s.id(), status,
+               cost.wall_seconds > 0 ? cost.wall_seconds : child.wall_seconds, measured ? fmt::format(", displacement error {:.2e} (H1)", a.displacement_h1) : "");
+    write_tradeoff_report(out);
+  }
+  write_tradeoff_report(out);
+}
+
+}  // namespace stiction::harness

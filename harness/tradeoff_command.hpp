@@ -1,0 +1,35 @@
+#pragma once
+// `stiction tradeoff`: speed against accuracy on one scene and mesh level. A reference is
+// solved first (an exact factorisation, Newton to a tight tolerance); then every backend
+// runs at its defaults and at each combination of the knobs (Newton tolerance, Krylov
+// tolerance, forcing), each run a child `stiction solve` with a time and memory limit. A
+// run's accuracy is its final state against the reference's (solution_accuracy.hpp), its
+// cost the run's wall time, linear-solve time, iterations and peak memory; each becomes a
+// row of tradeoff.csv, synced as it finishes. report.md (the Pareto front, a plot and the
+// recommendations) is rebuilt after every run and by `stiction report DIR`.
+#include <string>
+#include <vector>
+
+#include "run_info.hpp"
+
+namespace stiction::harness {
+
+struct TradeoffOptions {
+  std::string scene;
+  int level = 0;
+  std::vector<std::string> solvers{"schur-amg"};
+  std::vector<double> newton_rtols{1e-4, 1e-6, 1e-8};
+  std::vector<double> krylov_rtols{1e-2, 1e-4, 1e-6, 1e-8};  // iterative backends only
+  std::vector<std::string> forcings{"fixed"};
+  std::string reference_solver = "lu-mumps";
+  double reference_newton_rtol = 1e-12;
+  std::string out_dir = "reports/tradeoff";
+  bool resume = false;
+  double time_limit_seconds = 3600;
+  double memory_limit_mb = 0;  // 0: 90% of the machine's memory
+  std::vector<std::string> petsc_options;  // "-prefix_key value" pairs, forwarded by prefix
+};
+
+void run_tradeoff(const TradeoffOptions& options, const RunInfo& info);
+
+}  // namespace stiction::harness

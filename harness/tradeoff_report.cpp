@@ -1,0 +1,151 @@
+#include "tradeoff_report.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <vector>
+
+#include "csv_table.hpp"
+#include "scaling_plots.hpp"
+
+namespace stiction::harness {
+
+const char* const kTradeoffColumns =
+    "scene,level,id,solver,forcing,newton_rtol,krylov_rtol,default,status,reason,newton_iterations,linear_solves,"
+    "krylov_iterations,wall_seconds,linear_seconds,peak_rss_mb,error_u_l2,error_u_h1,error_contact_force,"
+    "error_peak_pressure,state_changes,detail";
+
+namespace {
+
+using Row = std::map<std::string, std::string>;
+
+bool measured(const Row& r) { return r.at("status") == "ok" && !r.at("error_u_h1").empty(); }
+
+std::string command_of(const Row& r) {
+  std::string c = fmt::format("stiction solve {} --level {} --solver {}", r.at("scene"), r.at("level"), r.at("solver"));
+  if (!r.at("forcing").empty() && r.at("forcing") != "fixed") c += " --forcing " + r.at("forcing");
+  if (!r.at("newton_rtol").empty()) c += " --newton-rtol " + r.at("newton_rtol");
+  if (!r.at("krylov_rtol").empty()) c += " --krylov-rtol " + r.at("krylov_rtol");
+  return c;
+}
+
+std::string cell(const Row& r, const std::string& key) { return r.at(key).empty() ? "—" : r.at(key); }
+
+// The measured runs no other measured run beats on both wall time and displacement error
+// (H1), fastest first.
+std::vector<const Row*> pareto_front(const std::vector<const Row*>& runs) {
+  std::vector<const Row*> sorted = runs, front;
+  std::sort(sorted.begin(), sorted.end(), [](const Row* a, const Row* b) {
+    const double ta = number(*a, "wall_seconds"), tb = number(*b, "wall_seconds");
+    return ta != tb ? ta < tb : number(*a, "error_u_h1") < number(*b, "error_u_h1");
+  });
+  double best = INFINITY;
+  for (const Row* r : sorted)
+    if (number(*r, "error_u_h1") < best) {
+      front.push_back(r);
+      best = number(*r, "error_u_h1");
+    }
+  return front;
+}
+
+// The Pareto plot: one point series per backend, the front as a staircase. Returns the
+// markdown line that shows it, or says why it was not drawn.
+std::string plot(const std::string& out_dir, const std::vector<const Row*>& runs, const std::vector<const Row*>& front) {
+  std::map<std::string, std::vector<const Row*>> by_solver;
+  for (const Row* r : runs) by_solver[r->at("solver")].push_back(r);
+  // An error of exactly zero (the reference's own answer) sits at the bottom of the log axis.
+  auto error = [](const Row* r) { return std::max(number(*r, "error_u_h1"), 1e-16); };
+  std::string data, series;
+  int block = 0;
+  for (const auto& [solver, rows] : by_solver) {
+    data += fmt::format("# {}: wall_seconds error_u_h1\n", solver);
+    for (const Row* r : rows) data += fmt::format("{} {:.6e}\n", r->at("wall_seconds"), error(r));
+    data += "\n\n";
+    series += fmt::format("{}data index {} using 1:2 with points pt 7 ps 1.2 title '{}'", block ? ", \\\n     " : "plot ",
+                          block, solver);
+    ++block;
+  }
+  data += "# Pareto front\n";
+  for (const Row* r : front) data += fmt::format("{} {:.6e}\n", r->at("wall_seconds"), error(r));
+  series += fmt::format(", \\\n     data index {} using 1:2 with steps lw 2 lc rgb 'black' title 'Pareto front'", block);
+  const std::string stem = "tradeoff";
+  write_text_file(out_dir + "/" + stem + ".dat", data);
+  write_text_file(out_dir + "/" + stem + ".gp",
+                  fmt::format("# Redraw with: gnuplot {0}.gp (in this directory)\n"
+                              "data = '{0}.dat'\n"
+                              "set terminal svg size 720,480 dynamic font 'sans,12'\n"
+                              "set output '{0}.svg'\nset key right top\nset grid\nset logscale xy\n"
+                              "set xlabel 'wall time of the run (s)'\n"
+                              "set ylabel 'displacement error against the reference (H1, relative)'\n"
+                              "set title 'speed against accuracy'\n{1}\n",
+                              stem, series));
+  if (!draw_with_gnuplot(out_dir, stem))
+    return "Plot not drawn: gnuplot failed or is missing (`tradeoff.log`; `scripts/ensure-gnuplot.sh` installs "
+           "it); `tradeoff.gp` draws it.\n";
+  return "![wall time against displacement error](tradeoff.svg)\n";
+}
+
+}  // namespace
+
+void write_tradeoff_report(const std::string& out_dir) {
+  const CsvTable table = read_csv(out_dir + "/tradeoff.csv");
+  std::string md = "# Speed against accuracy";
+  if (!table.rows.empty())
+    md += fmt::format(": {} level {}", table.rows.front().at("scene"), table.rows.front().at("level"));
+  md += "\n\nHow it was made:\n\n```\n";
+  for (const auto& c : table.comments) md += c + "\n";
+  md += "```\n\n"
+        "Accuracy is each run's final state against the reference's (first row), on the same mesh: the "
+        "displacement error in L2 and in the H1 seminorm, the contact force (every pair's multiplier integral), "
+        "the largest contact pressure, each relative to the reference, and the slave nodes whose contact state "
+        "differs. Cost is the run's wall time (its own process), the time in linear solves (set-up and solve) "
+        "and its peak resident memory.\n\n## Runs\n\n"
+        "| setting | status | Newton | Krylov | wall s | linear s | peak MB | error u L2 | error u H1 | contact "
+        "force | peak pressure | states changed |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  std::vector<const Row*> runs;
+  for (const auto& r : table.rows) {
+    md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", r.at("id"),
+                      r.at("status") == "ok" ? "ok" : r.at("status") + " (" + r.at("reason") + ")",
+                      r.at("newton_iterations"), r.at("krylov_iterations"), r.at("wall_seconds"),
+                      r.at("linear_seconds"), r.at("peak_rss_mb"), cell(r, "error_u_l2"), cell(r, "error_u_h1"),
+                      cell(r, "error_contact_force"), cell(r, "error_peak_pressure"), cell(r, "state_changes"));
+    if (measured(r)) runs.push_back(&r);
+  }
+  if (!runs.empty()) {
+    const auto front = pareto_front(runs);
+    md += "\n## Pareto front (wall time against the displacement error in H1)\n\n"
+          "| setting | wall s | error u H1 | contact force | command |\n|---|---|---|---|---|\n";
+    for (const Row* r : front)
+      md += fmt::format("| {} | {} | {} | {} | `{}` |\n", r->at("id"), r->at("wall_seconds"), r->at("error_u_h1"),
+                        cell(*r, "error_contact_force"), command_of(*r));
+    md += "\n" + plot(out_dir, runs, front);
+    md += "\n## Recommendations\n\n";
+    for (double target : {1e-2, 1e-4, 1e-6, 1e-8}) {
+      const Row* best = nullptr;
+      for (const Row* r : front)
+        if (number(*r, "error_u_h1") <= target) {
+          best = r;
+          break;  // the front is sorted fastest first
+        }
+      if (!best) {
+        md += fmt::format("* Displacement error (H1) at most {:g}: no run reached it.\n", target);
+        continue;
+      }
+      md += fmt::format("* Displacement error (H1) at most {:g}: `{}`, {} s (error {})", target, command_of(*best),
+                        best->at("wall_seconds"), best->at("error_u_h1"));
+      const auto defaults = std::find_if(table.rows.begin(), table.rows.end(), [&](const Row& r) {
+        return r.at("solver") == best->at("solver") && r.at("default") == "1" && r.at("status") == "ok";
+      });
+      if (defaults != table.rows.end() && &*defaults != best)
+        md += fmt::format(": {:.1f}x faster than {}'s defaults ({} s, error {})",
+                          number(*defaults, "wall_seconds") / number(*best, "wall_seconds"), best->at("solver"),
+                          defaults->at("wall_seconds"), cell(*defaults, "error_u_h1"));
+      md += ".\n";
+    }
+  }
+  write_text_file(out_dir + "/report.md", md);
+}
+
+}  // namespace stiction::harness
