@@ -24,13 +24,16 @@ namespace fs = std::filesystem;
 namespace {
 
 // One configuration: a backend at its defaults (newton_rtol and krylov_rtol < 0, forcing
-// empty: the scene's and the backend's), or with the given knobs.
+// and knob empty: the scene's and the backend's), with the given tolerances, or with one
+// PETSc option of its own (knob, "option=value").
 struct Setting {
   std::string solver, forcing;
   double newton_rtol = -1, krylov_rtol = -1;
-  bool is_default() const { return forcing.empty() && newton_rtol < 0 && krylov_rtol < 0; }
+  std::string knob;
+  bool is_default() const { return forcing.empty() && newton_rtol < 0 && krylov_rtol < 0 && knob.empty(); }
   std::string id() const {
     if (is_default()) return solver + "-default";
+    if (!knob.empty()) return solver + "-" + knob;
     std::string s = fmt::format("{}-{}-newton{:g}", solver, forcing, newton_rtol);
     if (krylov_rtol >= 0) s += fmt::format("-krylov{:g}", krylov_rtol);
     return s;
@@ -40,9 +43,22 @@ struct Setting {
     if (!forcing.empty()) a.insert(a.end(), {"--forcing", forcing});
     if (newton_rtol >= 0) a.insert(a.end(), {"--newton-rtol", fmt::format("{:g}", newton_rtol)});
     if (krylov_rtol >= 0) a.insert(a.end(), {"--krylov-rtol", fmt::format("{:g}", krylov_rtol)});
+    if (!knob.empty()) a.insert(a.end(), {"-" + knob.substr(0, knob.find('=')), knob.substr(knob.find('=') + 1)});
     return a;
   }
 };
+
+// "option=v1,v2" -> the option and its values; throws when malformed.
+std::pair<std::string, std::vector<std::string>> parse_knob(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size() || text[0] == '-')
+    throw Error(fmt::format("knob '{}' is not option=value,value,... (the PETSc option without its dash)", text));
+  std::vector<std::string> values;
+  std::istringstream list(text.substr(eq + 1));
+  for (std::string v; std::getline(list, v, ',');)
+    if (!v.empty()) values.push_back(v);
+  return {text.substr(0, eq), values};
+}
 
 // A direct backend (one exact solve, no Krylov iterations) has no Krylov tolerance to vary.
 bool is_direct(const std::string& solver) {
@@ -61,6 +77,11 @@ std::vector<Setting> settings_of(const TradeoffOptions& o) {
         }
         for (double krylov : o.krylov_rtols) all.push_back({solver, forcing, newton, krylov});
       }
+    for (const auto& knob : o.knobs) {
+      const auto [option, values] = parse_knob(knob);
+      if (option.rfind(solvers::options_prefix(solver), 0) != 0) continue;
+      for (const auto& v : values) all.push_back({solver, "", -1, -1, option + "=" + v});
+    }
   }
   return all;
 }
@@ -129,9 +150,9 @@ std::string row_of(const scene::Scene& scene, const std::string& id, const Setti
                    const std::string& detail) {
   const bool contact = accuracy && accuracy->contact;
   return fmt::format(
-      "{},{},{},{},{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.3f},{:.3f},{:.1f},{},{},{},{},{},{}", scene.name,
+      "{},{},{},{},{},{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.3f},{:.3f},{:.1f},{},{},{},{},{},{}", scene.name,
       scene.level, id, s.solver, s.forcing, s.newton_rtol >= 0 ? fmt::format("{:g}", s.newton_rtol) : "",
-      s.krylov_rtol >= 0 ? fmt::format("{:g}", s.krylov_rtol) : "", s.is_default() ? 1 : 0, status,
+      s.krylov_rtol >= 0 ? fmt::format("{:g}", s.krylov_rtol) : "", s.knob, s.is_default() ? 1 : 0, status,
       csv_field(cost.reason.empty() ? status : cost.reason), cost.newton, cost.solves, cost.krylov,
       cost.wall_seconds > 0 ? cost.wall_seconds : child.wall_seconds,
       cost.linear_seconds, child.peak_rss_mb, number_or_blank(accuracy ? accuracy->displacement_l2 : 0, accuracy),
@@ -156,6 +177,12 @@ void run_tradeoff(const TradeoffOptions& o, const RunInfo& info) {
   for (const auto& list : {o.newton_rtols, o.krylov_rtols})
     for (double x : list)
       if (!(x > 0 && x < 1)) throw Error(fmt::format("tolerance {:g} outside (0, 1)", x));
+  for (const auto& knob : o.knobs) {
+    const std::string option = parse_knob(knob).first;
+    bool matches = false;
+    for (const auto& s : o.solvers) matches |= option.rfind(solvers::options_prefix(s), 0) == 0;
+    if (!matches) throw Error(fmt::format("knob '{}' carries the prefix of none of the backends of this sweep", option));
+  }
   for (const auto& option : o.petsc_options) {
     bool matches = false;
     for (const auto& s : o.solvers) matches |= option.rfind("-" + solvers::options_prefix(s), 0) == 0;

@@ -21,6 +21,10 @@ struct TradeoffOptions {
   std::vector<double> newton_rtols{1e-4, 1e-6, 1e-8};
   std::vector<double> krylov_rtols{1e-2, 1e-4, 1e-6, 1e-8};  // iterative backends only
   std::vector<std::string> forcings{"fixed"};
+  // A backend's own cheapening knob, "option=v1,v2,..." with the PETSc option without its
+  // dash (schur_amg_ll_pc_hypre_boomeramg_strong_threshold=0.25,0.5,0.7): each value is a
+  // run of the backend whose prefix the option carries, at its default tolerances.
+  std::vector<std::string> knobs;
   std::string reference_solver = "lu-mumps";
   double reference_newton_rtol = 1e-12;
   std::string out_dir = "reports/tradeoff";

@@ -13,7 +13,7 @@
 namespace stiction::harness {
 
 const char* const kTradeoffColumns =
-    "scene,level,id,solver,forcing,newton_rtol,krylov_rtol,default,status,reason,newton_iterations,linear_solves,"
+    "scene,level,id,solver,forcing,newton_rtol,krylov_rtol,knob,default,status,reason,newton_iterations,linear_solves,"
     "krylov_iterations,wall_seconds,linear_seconds,peak_rss_mb,error_u_l2,error_u_h1,error_contact_force,"
     "error_peak_pressure,state_changes,detail";
 
@@ -28,6 +28,8 @@ std::string command_of(const Row& r) {
   if (!r.at("forcing").empty() && r.at("forcing") != "fixed") c += " --forcing " + r.at("forcing");
   if (!r.at("newton_rtol").empty()) c += " --newton-rtol " + r.at("newton_rtol");
   if (!r.at("krylov_rtol").empty()) c += " --krylov-rtol " + r.at("krylov_rtol");
+  if (const std::string& knob = r.at("knob"); !knob.empty())
+    c += " -" + knob.substr(0, knob.find('=')) + " " + knob.substr(knob.find('=') + 1);
   return c;
 }
 

@@ -593,12 +593,13 @@ TEST_F(StictionCli, KrylovToleranceComesFromTheCommandLineThenTheSceneThenTheBac
 // tolerance (lu-mumps); the report names the Pareto front and a recommendation, and
 // `stiction report` rebuilds it from the CSV alone.
 TEST_F(StictionCli, TradeoffErrorFallsWithTheKrylovToleranceUntilItMeetsTheNewtonTolerance) {
-  const CliRun sweep = CliRun::of({"tradeoff", "cantilever-2d", "--solvers", "schur-amg,lu-mumps", "--newton-rtols",
-                                   "1e-2", "--krylov-rtols", "1e-2,1e-4,1e-6", "--out", "sweep"},
-                                  dir_);
+  const std::vector<std::string> arguments{"tradeoff", "cantilever-2d", "--solvers", "schur-amg,lu-mumps",
+                                           "--newton-rtols", "1e-2", "--krylov-rtols", "1e-2,1e-4,1e-6",
+                                           "--knob", "schur_amg_qq_pc_sor_its=2", "--out", "sweep"};
+  const CliRun sweep = CliRun::of(arguments, dir_);
   ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
   const auto rows = stiction::harness::read_csv((dir_ / "sweep" / "tradeoff.csv").string()).rows;
-  ASSERT_EQ(rows.size(), 7u) << "reference, two defaults, three schur-amg settings, one lu-mumps setting";
+  ASSERT_EQ(rows.size(), 8u) << "reference, two defaults, three schur-amg settings, a knob, one lu-mumps setting";
   EXPECT_EQ(rows.front().at("id"), "reference");
   std::map<std::string, double> error;
   for (const auto& row : rows) {
@@ -614,6 +615,7 @@ TEST_F(StictionCli, TradeoffErrorFallsWithTheKrylovToleranceUntilItMeetsTheNewto
   EXPECT_GE(middle, tight);
   EXPECT_NEAR(tight, exact, exact) << "at Krylov 1e-6 the Newton tolerance decides the error";
   EXPECT_LT(error.at("lu-mumps-default"), 1e-9) << "the defaults (Newton 1e-8) against the reference";
+  EXPECT_LT(error.at("schur-amg-schur_amg_qq_pc_sor_its=2"), 1e-6) << "a knob at the default tolerances";
 
   const std::string report = read_file(dir_ / "sweep" / "report.md");
   EXPECT_NE(report.find("## Pareto front"), std::string::npos);
@@ -622,17 +624,21 @@ TEST_F(StictionCli, TradeoffErrorFallsWithTheKrylovToleranceUntilItMeetsTheNewto
   ASSERT_EQ(CliRun::of({"report", (dir_ / "sweep").string()}, dir_).exit_code, 0);
   EXPECT_EQ(read_file(dir_ / "sweep" / "report.md"), report);
 
-  const CliRun again = CliRun::of({"tradeoff", "cantilever-2d", "--solvers", "schur-amg,lu-mumps", "--newton-rtols",
-                                   "1e-2", "--krylov-rtols", "1e-2,1e-4,1e-6", "--out", "sweep", "--resume"},
-                                  dir_);
+  std::vector<std::string> resumed = arguments;
+  resumed.push_back("--resume");
+  const CliRun again = CliRun::of(resumed, dir_);
   ASSERT_EQ(again.exit_code, 0) << again.err;
-  EXPECT_EQ(stiction::harness::read_csv((dir_ / "sweep" / "tradeoff.csv").string()).rows.size(), 7u)
+  EXPECT_EQ(stiction::harness::read_csv((dir_ / "sweep" / "tradeoff.csv").string()).rows.size(), 8u)
       << "a resumed sweep reruns nothing that finished";
 
   const CliRun unknown = CliRun::of({"tradeoff", "cantilever-2d", "--solvers", "no-such", "--out", "bad"}, dir_);
   EXPECT_EQ(unknown.exit_code, 2);
   ASSERT_EQ(unknown.error_lines().size(), 1u) << unknown.err;
   EXPECT_NE(unknown.error_lines()[0].find("unknown solver backend 'no-such'"), std::string::npos);
+  const CliRun stray = CliRun::of({"tradeoff", "cantilever-2d", "--knob", "lu_mumps_mat_mumps_icntl_14=50", "--out", "bad"}, dir_);
+  EXPECT_EQ(stray.exit_code, 2);
+  ASSERT_EQ(stray.error_lines().size(), 1u) << stray.err;
+  EXPECT_NE(stray.error_lines()[0].find("prefix of none of the backends"), std::string::npos) << stray.err;
 }
 
 // With a memory limit in the environment (as `stiction bench` sets for its runs), the
