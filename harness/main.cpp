@@ -162,6 +162,8 @@ int main(int argc, char** argv) {
       ->delimiter(',');
   tradeoff_cmd->add_option("--knob", tradeoff.knobs,
                            "a backend's own knob, option=v1,v2,... (PETSc option without its dash); repeatable");
+  tradeoff_cmd->add_flag("--discretisation", tradeoff.discretisation,
+                         "also solve the reference one level finer: the discretisation error beside the solver's");
   tradeoff_cmd->add_option("--reference-solver", tradeoff.reference_solver, "backend of the reference (lu-mumps)");
   tradeoff_cmd->add_option("--reference-newton-rtol", tradeoff.reference_newton_rtol,
                            "Newton tolerance of the reference (1e-12)");

@@ -58,6 +58,22 @@ FinalState read_final_state(const scene::Scene& scene, const std::string& dir) {
 
 double relative(double error, double reference) { return reference > 0 ? error / reference : error; }
 
+// The norms of a discrete displacement: its error against zero.
+fem::ErrorNorms norms_of(const scene::Scene& scene, const std::vector<double>& u) {
+  const auto zero = [](const double*, double* out) { std::fill(out, out + 3, 0.0); };
+  const auto zero_gradient = [](const double*, double* out) { std::fill(out, out + 9, 0.0); };
+  return fem::compute_errors(*scene.space, u, zero, zero_gradient);
+}
+
+double force_difference(const std::vector<double>& f, const std::vector<double>& ref) {
+  double error = 0, size = 0;
+  for (size_t k = 0; k < ref.size() && k < f.size(); ++k) {
+    error += std::pow(f[k] - ref[k], 2);
+    size += std::pow(ref[k], 2);
+  }
+  return relative(std::sqrt(error), std::sqrt(size));
+}
+
 }  // namespace
 
 SolutionAccuracy compare_to_reference(const scene::Scene& scene, const std::string& run_dir,
@@ -66,27 +82,33 @@ SolutionAccuracy compare_to_reference(const scene::Scene& scene, const std::stri
   SolutionAccuracy a;
   std::vector<double> difference(ref.u.size());
   for (size_t i = 0; i < difference.size(); ++i) difference[i] = run.u[i] - ref.u[i];
-  // The norms of a discrete field: its error against zero.
-  const auto zero = [](const double*, double* out) { std::fill(out, out + 3, 0.0); };
-  const auto zero_gradient = [](const double*, double* out) { std::fill(out, out + 9, 0.0); };
-  const fem::ErrorNorms error = fem::compute_errors(*scene.space, difference, zero, zero_gradient);
-  const fem::ErrorNorms size = fem::compute_errors(*scene.space, ref.u, zero, zero_gradient);
+  const fem::ErrorNorms error = norms_of(scene, difference), size = norms_of(scene, ref.u);
   a.displacement_l2 = relative(error.l2, size.l2);
   a.displacement_h1 = relative(error.h1_seminorm, size.h1_seminorm);
   a.contact = !scene.contacts.empty();
   if (!a.contact) return a;
-  double force_error = 0, force_size = 0;
-  for (size_t k = 0; k < ref.contact_force.size() && k < run.contact_force.size(); ++k) {
-    force_error += std::pow(run.contact_force[k] - ref.contact_force[k], 2);
-    force_size += std::pow(ref.contact_force[k], 2);
-  }
-  a.contact_force = relative(std::sqrt(force_error), std::sqrt(force_size));
+  a.contact_force = force_difference(run.contact_force, ref.contact_force);
   a.peak_pressure = relative(std::abs(run.peak_pressure - ref.peak_pressure), ref.peak_pressure);
   for (const auto& [node, state] : ref.states) {
     const auto it = run.states.find(node);
     a.state_changes += it == run.states.end() || it->second != state;
   }
   return a;
+}
+
+LevelDifference compare_levels(const scene::Scene& coarse, const std::string& coarse_dir, const scene::Scene& fine,
+                               const std::string& fine_dir) {
+  const FinalState c = read_final_state(coarse, coarse_dir), f = read_final_state(fine, fine_dir);
+  const fem::ErrorNorms nc = norms_of(coarse, c.u), nf = norms_of(fine, f.u);
+  LevelDifference d;
+  d.displacement_l2 = relative(std::abs(nc.l2 - nf.l2), nf.l2);
+  d.displacement_h1 = relative(std::abs(nc.h1_seminorm - nf.h1_seminorm), nf.h1_seminorm);
+  d.contact = !coarse.contacts.empty();
+  if (d.contact) {
+    d.contact_force = force_difference(c.contact_force, f.contact_force);
+    d.peak_pressure = relative(std::abs(c.peak_pressure - f.peak_pressure), f.peak_pressure);
+  }
+  return d;
 }
 
 }  // namespace stiction::harness

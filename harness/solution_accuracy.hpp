@@ -18,6 +18,19 @@ struct SolutionAccuracy {
   int state_changes = 0;        // slave nodes whose state (inactive / stick / slip) differs
 };
 
+// How much a finer mesh changes the answer (the discretisation error a solver tolerance
+// cannot go below usefully): the relative differences of the displacement's L2 norm and H1
+// seminorm (a lower bound of the norms of the difference, which lives on two meshes),
+// of the contact force and of the peak contact pressure between the two levels' final states.
+struct LevelDifference {
+  double displacement_l2 = 0, displacement_h1 = 0;
+  bool contact = false;
+  double contact_force = 0, peak_pressure = 0;
+};
+
+LevelDifference compare_levels(const scene::Scene& coarse, const std::string& coarse_dir, const scene::Scene& fine,
+                               const std::string& fine_dir);
+
 // run_dir and reference_dir are `stiction solve` output directories of `scene` (their
 // checkpoint.bin, steps.csv and contact.csv) that both completed every load step. Throws
 // stiction::Error when either is missing, of another scene or level, or did not finish.

@@ -14,6 +14,7 @@
 #include "csv_table.hpp"
 #include "ksp_solver.hpp"
 #include "registry.hpp"
+#include "scaling_plots.hpp"
 #include "solution_accuracy.hpp"
 #include "tradeoff_report.hpp"
 
@@ -123,12 +124,12 @@ std::string last_line(const std::string& path) {
 }
 
 // Runs `stiction solve` for one setting into run_dir; returns its status.
-std::string solve_child(const TradeoffOptions& o, const std::vector<std::string>& setting_arguments,
+std::string solve_child(const TradeoffOptions& o, int level, const std::vector<std::string>& setting_arguments,
                         const std::string& run_dir, const ChildLimits& limits, ChildResult& child) {
   std::error_code ec;
   fs::remove_all(run_dir, ec);
   fs::create_directories(run_dir, ec);
-  std::vector<std::string> argv{self_executable(), "solve", o.scene,  "--level",   std::to_string(o.level),
+  std::vector<std::string> argv{self_executable(), "solve", o.scene,  "--level",   std::to_string(level),
                                 "--out",           run_dir, "--quiet", "--no-vtu", "--metrics",
                                 run_dir + "/metrics.toml"};
   argv.insert(argv.end(), setting_arguments.begin(), setting_arguments.end());
@@ -162,6 +163,26 @@ std::string row_of(const scene::Scene& scene, const std::string& id, const Setti
       csv_field(detail));
 }
 
+// Solves the reference at `level` into dir (a row `id` of tradeoff.csv unless done has it);
+// throws when it does not finish, since nothing can be measured against it.
+void solve_reference(const TradeoffOptions& o, int level, const scene::Scene& scene, const std::string& id,
+                     const std::string& dir, const ChildLimits& limits, const std::string& csv,
+                     std::set<std::string>& done) {
+  ChildResult child;
+  const std::string status = solve_child(
+      o, level, {"--solver", o.reference_solver, "--newton-rtol", fmt::format("{:g}", o.reference_newton_rtol)}, dir,
+      limits, child);
+  if (status != "ok")
+    throw Error(fmt::format("the reference run at level {} ({} with newton rtol {:g}) ended {}: {} (see {}/stderr.txt)",
+                            level, o.reference_solver, o.reference_newton_rtol, status, last_line(dir + "/stderr.txt"),
+                            dir),
+                ErrorKind::Numerical);
+  if (!done.count(id))
+    append_durably(csv, row_of(scene, id, {o.reference_solver, "fixed", o.reference_newton_rtol, -1}, status,
+                               read_cost(dir + "/metrics.toml"), child, nullptr, ""));
+  done.insert(id);
+}
+
 }  // namespace
 
 void run_tradeoff(const TradeoffOptions& o, const RunInfo& info) {
@@ -188,6 +209,7 @@ void run_tradeoff(const TradeoffOptions& o, const RunInfo& info) {
     for (const auto& s : o.solvers) matches |= option.rfind("-" + solvers::options_prefix(s), 0) == 0;
     if (!matches) throw Error(fmt::format("PETSc option '{}' matches none of the backends of this sweep", option));
   }
+  if (o.discretisation && o.level >= 4) throw Error("--discretisation needs a level below 4 (it solves one finer)");
   const auto scene = open_scene(o.scene, o.level);  // bad input fails here, before any run
 
   const std::string out = o.out_dir, csv = out + "/tradeoff.csv";
@@ -223,18 +245,22 @@ void run_tradeoff(const TradeoffOptions& o, const RunInfo& info) {
   if (!fs::exists(reference_dir + "/checkpoint.bin") || !done.count("reference")) {
     fmt::print(stderr, "tradeoff: reference ({} with newton rtol {:g})\n", o.reference_solver, o.reference_newton_rtol);
     ChildResult child;
-    const std::string status =
-        solve_child(o, {"--solver", o.reference_solver, "--newton-rtol", fmt::format("{:g}", o.reference_newton_rtol)},
-                    reference_dir, limits, child);
-    if (status != "ok")
-      throw Error(fmt::format("the reference run ({} with newton rtol {:g}) ended {}: {} (see {}/stderr.txt)",
-                              o.reference_solver, o.reference_newton_rtol, status,
-                              last_line(reference_dir + "/stderr.txt"), reference_dir),
-                  ErrorKind::Numerical);
-    if (!done.count("reference"))
-      append_durably(csv, row_of(*scene, "reference", {o.reference_solver, "fixed", o.reference_newton_rtol, -1}, status,
-                                 read_cost(reference_dir + "/metrics.toml"), child, nullptr, ""));
-    done.insert("reference");
+    solve_reference(o, o.level, *scene, "reference", reference_dir, limits, csv, done);
+  }
+  if (o.discretisation) {
+    const auto fine = open_scene(o.scene, o.level + 1);
+    const std::string fine_id = fmt::format("reference-L{}", o.level + 1), fine_dir = out + "/" + fine_id;
+    if (!fs::exists(fine_dir + "/checkpoint.bin") || !done.count(fine_id)) {
+      fmt::print(stderr, "tradeoff: reference at level {} (the discretisation error)\n", o.level + 1);
+      solve_reference(o, o.level + 1, *fine, fine_id, fine_dir, limits, csv, done);
+    }
+    const LevelDifference d = compare_levels(*scene, reference_dir, *fine, fine_dir);
+    write_text_file(out + "/discretisation.csv",
+                    fmt::format("# the reference's final state at level {} against level {}'s (relative differences)\n"
+                                "level,fine_level,displacement_l2,displacement_h1,contact_force,peak_pressure\n"
+                                "{},{},{:.3e},{:.3e},{},{}\n",
+                                o.level, o.level + 1, o.level, o.level + 1, d.displacement_l2, d.displacement_h1,
+                                number_or_blank(d.contact_force, d.contact), number_or_blank(d.peak_pressure, d.contact)));
   }
 
   const auto settings = settings_of(o);
@@ -244,7 +270,7 @@ void run_tradeoff(const TradeoffOptions& o, const RunInfo& info) {
     if (done.count(s.id())) continue;
     const std::string run_dir = (fs::path(out) / "runs" / s.id()).string();
     ChildResult child;
-    const std::string status = solve_child(o, s.arguments(), run_dir, limits, child);
+    const std::string status = solve_child(o, o.level, s.arguments(), run_dir, limits, child);
     const RunCost cost = read_cost(run_dir + "/metrics.toml");
     SolutionAccuracy a;
     bool measured = false;

@@ -25,6 +25,9 @@ struct TradeoffOptions {
   // dash (schur_amg_ll_pc_hypre_boomeramg_strong_threshold=0.25,0.5,0.7): each value is a
   // run of the backend whose prefix the option carries, at its default tolerances.
   std::vector<std::string> knobs;
+  // Also solve the reference one level finer: how much the mesh changes the answer, beside
+  // what the tolerances change (discretisation.csv).
+  bool discretisation = false;
   std::string reference_solver = "lu-mumps";
   double reference_newton_rtol = 1e-12;
   std::string out_dir = "reports/tradeoff";

@@ -595,16 +595,19 @@ TEST_F(StictionCli, KrylovToleranceComesFromTheCommandLineThenTheSceneThenTheBac
 TEST_F(StictionCli, TradeoffErrorFallsWithTheKrylovToleranceUntilItMeetsTheNewtonTolerance) {
   const std::vector<std::string> arguments{"tradeoff", "cantilever-2d", "--solvers", "schur-amg,lu-mumps",
                                            "--newton-rtols", "1e-2", "--krylov-rtols", "1e-2,1e-4,1e-6",
-                                           "--knob", "schur_amg_qq_pc_sor_its=2", "--out", "sweep"};
+                                           "--knob", "schur_amg_qq_pc_sor_its=2", "--discretisation", "--out",
+                                           "sweep"};
   const CliRun sweep = CliRun::of(arguments, dir_);
   ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
   const auto rows = stiction::harness::read_csv((dir_ / "sweep" / "tradeoff.csv").string()).rows;
-  ASSERT_EQ(rows.size(), 8u) << "reference, two defaults, three schur-amg settings, a knob, one lu-mumps setting";
-  EXPECT_EQ(rows.front().at("id"), "reference");
+  ASSERT_EQ(rows.size(), 9u)
+      << "references at levels 0 and 1, two defaults, three schur-amg settings, a knob, one lu-mumps setting";
+  EXPECT_EQ(rows.at(0).at("id"), "reference");
+  EXPECT_EQ(rows.at(1).at("id"), "reference-L1");
   std::map<std::string, double> error;
   for (const auto& row : rows) {
     EXPECT_EQ(row.at("status"), "ok") << row.at("id") << ": " << row.at("detail");
-    if (row.at("id") != "reference") error[row.at("id")] = stiction::harness::number(row, "error_u_h1");
+    if (row.at("id").rfind("reference", 0) != 0) error[row.at("id")] = stiction::harness::number(row, "error_u_h1");
   }
   const double loose = error.at("schur-amg-fixed-newton0.01-krylov0.01"),
                middle = error.at("schur-amg-fixed-newton0.01-krylov0.0001"),
@@ -617,7 +620,13 @@ TEST_F(StictionCli, TradeoffErrorFallsWithTheKrylovToleranceUntilItMeetsTheNewto
   EXPECT_LT(error.at("lu-mumps-default"), 1e-9) << "the defaults (Newton 1e-8) against the reference";
   EXPECT_LT(error.at("schur-amg-schur_amg_qq_pc_sor_its=2"), 1e-6) << "a knob at the default tolerances";
 
+  // The mesh changes the answer by far more than the tolerances do here.
+  const auto levels = stiction::harness::read_csv((dir_ / "sweep" / "discretisation.csv").string()).rows;
+  ASSERT_EQ(levels.size(), 1u);
+  EXPECT_GT(stiction::harness::number(levels[0], "displacement_h1"), 10 * error.at("lu-mumps-default"));
+
   const std::string report = read_file(dir_ / "sweep" / "report.md");
+  EXPECT_NE(report.find("## What the mesh changes"), std::string::npos);
   EXPECT_NE(report.find("## Pareto front"), std::string::npos);
   EXPECT_NE(report.find("at most 0.01: `stiction solve cantilever-2d"), std::string::npos) << report;
   fs::remove(dir_ / "sweep" / "report.md");
@@ -628,7 +637,7 @@ TEST_F(StictionCli, TradeoffErrorFallsWithTheKrylovToleranceUntilItMeetsTheNewto
   resumed.push_back("--resume");
   const CliRun again = CliRun::of(resumed, dir_);
   ASSERT_EQ(again.exit_code, 0) << again.err;
-  EXPECT_EQ(stiction::harness::read_csv((dir_ / "sweep" / "tradeoff.csv").string()).rows.size(), 8u)
+  EXPECT_EQ(stiction::harness::read_csv((dir_ / "sweep" / "tradeoff.csv").string()).rows.size(), 9u)
       << "a resumed sweep reruns nothing that finished";
 
   const CliRun unknown = CliRun::of({"tradeoff", "cantilever-2d", "--solvers", "no-such", "--out", "bad"}, dir_);
