@@ -3,9 +3,11 @@
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "common/error.hpp"
+#include "scene/overrides.hpp"
 
 namespace stiction::harness {
 
@@ -13,10 +15,19 @@ const std::map<std::string, std::string>& embedded_scenes();  // generated
 
 const std::map<std::string, std::string>& builtin_scenes() { return embedded_scenes(); }
 
-std::unique_ptr<scene::Scene> open_scene(const std::string& name, int level) {
-  if (std::filesystem::is_regular_file(name)) return scene::load_scene_file(name, level);
+std::unique_ptr<scene::Scene> open_scene(const std::string& name, int level, const std::vector<std::string>& overrides) {
+  if (std::filesystem::is_regular_file(name)) {
+    std::ifstream in(name);
+    std::stringstream text;
+    text << in.rdbuf();
+    if (!in) throw Error(fmt::format("cannot open scene file '{}'", name));
+    return scene::build_scene(scene::apply_overrides(text.str(), overrides, name), name,
+                              std::filesystem::path(name).parent_path().string(), level);
+  }
   auto it = builtin_scenes().find(name);
-  if (it != builtin_scenes().end()) return scene::build_scene(it->second, "built-in:" + name, ".", level);
+  if (it != builtin_scenes().end())
+    return scene::build_scene(scene::apply_overrides(it->second, overrides, "built-in:" + name), "built-in:" + name,
+                              ".", level);
   std::string names;
   for (const auto& [n, text] : builtin_scenes()) names += (names.empty() ? "" : ", ") + n;
   throw Error(fmt::format("scene '{}' is neither a file nor a built-in scene (built-in: {})", name, names));

@@ -3,6 +3,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "scene/scene.hpp"
 
@@ -10,7 +11,9 @@ namespace stiction::harness {
 
 const std::map<std::string, std::string>& builtin_scenes();  // name -> TOML text
 // SCENE is a path to a .toml file or a built-in name; throws listing the built-ins.
-std::unique_ptr<scene::Scene> open_scene(const std::string& scene, int level);
+// overrides: KEY=VALUE settings of scene keys (scene/overrides.hpp).
+std::unique_ptr<scene::Scene> open_scene(const std::string& scene, int level,
+                                         const std::vector<std::string>& overrides = {});
 // First comment line of a scene file (what it shows).
 std::string scene_summary(const std::string& toml_text);
 

@@ -109,6 +109,8 @@ int main(int argc, char** argv) {
                    "relative tolerance of every Krylov solve, overriding the scene's newton.krylov_rtol (0: the "
                    "backend's -ksp_rtol)")
       ->check(CLI::Range(0.0, 1.0));
+  solve_cmd->add_option("--set", solve.overrides,
+                        "set a scene key, KEY=VALUE (contact[0].friction=0.6, newton.max_iterations=40); repeatable");
   solve_cmd
       ->add_option("--newton-rtol", solve.newton_rtol,
                    "Newton tolerance relative to each step's reference residual, overriding the scene's newton.rtol")

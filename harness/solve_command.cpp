@@ -40,7 +40,7 @@ void print_state_change(const nonlinear::QuasiStaticSolver::StateChange& c) {
 
 void run_solve(const SolveOptions& o, const RunInfo& info) {
   const auto t_start = std::chrono::steady_clock::now();
-  auto scene = open_scene(o.scene, o.level);
+  auto scene = open_scene(o.scene, o.level, o.overrides);
   if (!o.forcing.empty()) scene->newton.forcing = nonlinear::forcing_from_string(o.forcing);
   if (o.newton_rtol >= 0) scene->newton.rtol = o.newton_rtol;
   // Precedence of the Krylov tolerance: --krylov-rtol, then a -<backend>_ksp_rtol given on

@@ -19,6 +19,7 @@ struct SolveOptions {
   std::string forcing;           // overrides the scene's [newton] forcing when set
   double krylov_rtol = -1;       // overrides the scene's [newton] krylov_rtol when >= 0
   double newton_rtol = -1;       // overrides the scene's [newton] rtol when >= 0
+  std::vector<std::string> overrides;  // scene keys set on the command line (--set KEY=VALUE)
   double until = -1;             // stop after the load step that reaches this pseudo-time (< 0: the end)
   bool quick = false;            // stop at the scene's quick_until (the suite's short version)
   std::string restart_dir;       // continue from <dir>/checkpoint.bin (output defaults to <dir>, appended)

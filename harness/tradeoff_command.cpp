@@ -16,6 +16,7 @@
 #include "registry.hpp"
 #include "scaling_plots.hpp"
 #include "solution_accuracy.hpp"
+#include "solve_child.hpp"
 #include "tradeoff_report.hpp"
 
 namespace stiction::harness {
@@ -87,80 +88,22 @@ std::vector<Setting> settings_of(const TradeoffOptions& o) {
   return all;
 }
 
-struct RunCost {
-  std::string reason, detail;
-  double newton = 0, solves = 0, krylov = 0, linear_seconds = 0;
-  // The run's own wall time, from its start to its last output: the child's is counted by
-  // a 200 ms poll and holds the process's start-up.
-  double wall_seconds = 0;
-};
-
-RunCost read_cost(const std::string& metrics_path) {
-  RunCost c;
-  toml::table metrics;
-  try {
-    metrics = toml::parse_file(metrics_path);
-  } catch (const toml::parse_error&) {
-    return c;
-  }
-  const toml::table empty;
-  const toml::table& m = metrics["run"].as_table() ? *metrics["run"].as_table() : empty;
-  c.reason = m["reason"].value<std::string>().value_or("");
-  c.detail = m["detail"].value<std::string>().value_or("");
-  c.newton = m["newton_iterations"].value<double>().value_or(0);
-  c.solves = m["linear_solves"].value<double>().value_or(0);
-  c.krylov = m["krylov_iterations"].value<double>().value_or(0);
-  c.wall_seconds = m["wall_seconds"].value<double>().value_or(0);
-  c.linear_seconds = m["setup_seconds"].value<double>().value_or(0) + m["solve_seconds"].value<double>().value_or(0);
-  return c;
-}
-
-std::string last_line(const std::string& path) {
-  std::ifstream in(path);
-  std::string line, last;
-  while (std::getline(in, line))
-    if (!line.empty()) last = line;
-  return last;
-}
-
-// Runs `stiction solve` for one setting into run_dir; returns its status.
-std::string solve_child(const TradeoffOptions& o, int level, const std::vector<std::string>& setting_arguments,
-                        const std::string& run_dir, const ChildLimits& limits, ChildResult& child) {
-  std::error_code ec;
-  fs::remove_all(run_dir, ec);
-  fs::create_directories(run_dir, ec);
-  std::vector<std::string> argv{self_executable(), "solve", o.scene,  "--level",   std::to_string(level),
-                                "--out",           run_dir, "--quiet", "--no-vtu", "--metrics",
-                                run_dir + "/metrics.toml"};
-  argv.insert(argv.end(), setting_arguments.begin(), setting_arguments.end());
-  const std::string solver = setting_arguments.at(1);
-  for (const auto& option : o.petsc_options)
-    if (option.rfind("-" + solvers::options_prefix(solver), 0) == 0) {
-      std::istringstream words(option);
-      for (std::string w; words >> w;) argv.push_back(w);
-    }
-  child = run_child(argv, run_dir + "/stdout.txt", run_dir + "/stderr.txt", limits);
-  return solve_status(child, fs::exists(run_dir + "/metrics.toml"));
-}
-
 std::string number_or_blank(double x, bool set) { return set ? fmt::format("{:.3e}", x) : ""; }
 
 // One row of tradeoff.csv (kTradeoffColumns); accuracy null: not measured.
-std::string row_of(const scene::Scene& scene, const std::string& id, const Setting& s, const std::string& status,
-                   const RunCost& cost, const ChildResult& child, const SolutionAccuracy* accuracy,
-                   const std::string& detail) {
+std::string row_of(const scene::Scene& scene, const std::string& id, const Setting& s, const SolveRun& run,
+                   const SolutionAccuracy* accuracy) {
   const bool contact = accuracy && accuracy->contact;
   return fmt::format(
       "{},{},{},{},{},{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.3f},{:.3f},{:.1f},{},{},{},{},{},{}", scene.name,
       scene.level, id, s.solver, s.forcing, s.newton_rtol >= 0 ? fmt::format("{:g}", s.newton_rtol) : "",
-      s.krylov_rtol >= 0 ? fmt::format("{:g}", s.krylov_rtol) : "", s.knob, s.is_default() ? 1 : 0, status,
-      csv_field(cost.reason.empty() ? status : cost.reason), cost.newton, cost.solves, cost.krylov,
-      cost.wall_seconds > 0 ? cost.wall_seconds : child.wall_seconds,
-      cost.linear_seconds, child.peak_rss_mb, number_or_blank(accuracy ? accuracy->displacement_l2 : 0, accuracy),
+      s.krylov_rtol >= 0 ? fmt::format("{:g}", s.krylov_rtol) : "", s.knob, s.is_default() ? 1 : 0, run.status,
+      csv_field(run.reason.empty() ? run.status : run.reason), run.newton, run.solves, run.krylov, run.wall_seconds,
+      run.linear_seconds, run.child.peak_rss_mb, number_or_blank(accuracy ? accuracy->displacement_l2 : 0, accuracy),
       number_or_blank(accuracy ? accuracy->displacement_h1 : 0, accuracy),
       number_or_blank(contact ? accuracy->contact_force : 0, contact),
       number_or_blank(contact ? accuracy->peak_pressure : 0, contact), contact ? std::to_string(accuracy->state_changes) : "",
-      csv_field(detail));
+      csv_field(run.detail));
 }
 
 // Solves the reference at `level` into dir (a row `id` of tradeoff.csv unless done has it);
@@ -168,18 +111,13 @@ std::string row_of(const scene::Scene& scene, const std::string& id, const Setti
 void solve_reference(const TradeoffOptions& o, int level, const scene::Scene& scene, const std::string& id,
                      const std::string& dir, const ChildLimits& limits, const std::string& csv,
                      std::set<std::string>& done) {
-  ChildResult child;
-  const std::string status = solve_child(
-      o, level, {"--solver", o.reference_solver, "--newton-rtol", fmt::format("{:g}", o.reference_newton_rtol)}, dir,
-      limits, child);
-  if (status != "ok")
+  const Setting reference{o.reference_solver, "fixed", o.reference_newton_rtol, -1};
+  const SolveRun run = run_solve_child(o.scene, level, reference.arguments(), {}, dir, limits);
+  if (run.status != "ok")
     throw Error(fmt::format("the reference run at level {} ({} with newton rtol {:g}) ended {}: {} (see {}/stderr.txt)",
-                            level, o.reference_solver, o.reference_newton_rtol, status, last_line(dir + "/stderr.txt"),
-                            dir),
+                            level, o.reference_solver, o.reference_newton_rtol, run.status, run.detail, dir),
                 ErrorKind::Numerical);
-  if (!done.count(id))
-    append_durably(csv, row_of(scene, id, {o.reference_solver, "fixed", o.reference_newton_rtol, -1}, status,
-                               read_cost(dir + "/metrics.toml"), child, nullptr, ""));
+  if (!done.count(id)) append_durably(csv, row_of(scene, id, reference, run, nullptr));
   done.insert(id);
 }
 
@@ -244,7 +182,6 @@ void run_tradeoff(const TradeoffOptions& o, const RunInfo& info) {
   const std::string reference_dir = out + "/reference";
   if (!fs::exists(reference_dir + "/checkpoint.bin") || !done.count("reference")) {
     fmt::print(stderr, "tradeoff: reference ({} with newton rtol {:g})\n", o.reference_solver, o.reference_newton_rtol);
-    ChildResult child;
     solve_reference(o, o.level, *scene, "reference", reference_dir, limits, csv, done);
   }
   if (o.discretisation) {
@@ -269,20 +206,14 @@ void run_tradeoff(const TradeoffOptions& o, const RunInfo& info) {
     ++index;
     if (done.count(s.id())) continue;
     const std::string run_dir = (fs::path(out) / "runs" / s.id()).string();
-    ChildResult child;
-    const std::string status = solve_child(o, o.level, s.arguments(), run_dir, limits, child);
-    const RunCost cost = read_cost(run_dir + "/metrics.toml");
+    const SolveRun run = run_solve_child(o.scene, o.level, s.arguments(), o.petsc_options, run_dir, limits);
     SolutionAccuracy a;
-    bool measured = false;
-    std::string detail = status == "ok" || status == "newton-failed" ? cost.detail : last_line(run_dir + "/stderr.txt");
-    if (status == "ok") {
-      a = compare_to_reference(*scene, run_dir, reference_dir);
-      measured = true;
-    }
-    const std::string row = row_of(*scene, s.id(), s, status, cost, child, measured ? &a : nullptr, detail);
+    const bool measured = run.status == "ok";
+    if (measured) a = compare_to_reference(*scene, run_dir, reference_dir);
+    const std::string row = row_of(*scene, s.id(), s, run, measured ? &a : nullptr);
     append_durably(csv, row);
-    fmt::print(stderr, "tradeoff [{}/{}] {}: {} in {:.2f} s{}\n", index, settings.size(), s.id(), status,
-               cost.wall_seconds > 0 ? cost.wall_seconds : child.wall_seconds, measured ? fmt::format(", displacement error {:.2e} (H1)", a.displacement_h1) : "");
+    fmt::print(stderr, "tradeoff [{}/{}] {}: {} in {:.2f} s{}\n", index, settings.size(), s.id(), run.status,
+               run.wall_seconds, measured ? fmt::format(", displacement error {:.2e} (H1)", a.displacement_h1) : "");
     write_tradeoff_report(out);
   }
   write_tradeoff_report(out);

@@ -650,6 +650,32 @@ TEST_F(StictionCli, TradeoffErrorFallsWithTheKrylovToleranceUntilItMeetsTheNewto
   EXPECT_NE(stray.error_lines()[0].find("prefix of none of the backends"), std::string::npos) << stray.err;
 }
 
+// --set KEY=VALUE edits a scene key for one run, validated as the file would be: friction on
+// the frictionless hertz-cylinder-2d makes nodes stick and slip; a misspelt key, a missing
+// array entry and a value that is not TOML are bad input with one message each.
+TEST_F(StictionCli, SetChangesASceneKeyForOneRun) {
+  ASSERT_EQ(CliRun::of({"solve", "hertz-cylinder-2d", "--quiet", "--no-vtu", "--out", "plain"}, dir_).exit_code, 0);
+  const CliRun rough = CliRun::of({"solve", "hertz-cylinder-2d", "--quiet", "--no-vtu", "--out", "rough", "--set",
+                                   "contact[0].friction=0.3", "--set", "newton.max_iterations=40"},
+                                  dir_);
+  ASSERT_EQ(rough.exit_code, 0) << rough.err;
+  auto sticking = [&](const std::string& out) {
+    const auto rows = stiction::harness::read_csv((dir_ / out / "steps.csv").string()).rows;
+    EXPECT_FALSE(rows.empty());
+    return rows.empty() ? -1.0 : stiction::harness::number(rows.back(), "contact_ground_stick");
+  };
+  EXPECT_EQ(sticking("plain"), 0);
+  EXPECT_GT(sticking("rough"), 0);
+  for (const auto& [set, message] : {std::pair{"contact[0].frction=0.3", "unknown key"},
+                                     std::pair{"contact[3].friction=0.3", "the scene has no contact[3]"},
+                                     std::pair{"newton.rtol=abc", "the value is not TOML"}}) {
+    const CliRun bad = CliRun::of({"solve", "hertz-cylinder-2d", "--quiet", "--no-vtu", "--out", "bad", "--set", set}, dir_);
+    EXPECT_EQ(bad.exit_code, 2) << set;
+    ASSERT_EQ(bad.error_lines().size(), 1u) << bad.err;
+    EXPECT_NE(bad.error_lines()[0].find(message), std::string::npos) << bad.err;
+  }
+}
+
 // With a memory limit in the environment (as `stiction bench` sets for its runs), the
 // MUMPS backends compare MUMPS's estimate after analysis with what the process may still
 // use and refuse a factorisation that would not fit: a named failure with the estimate,
