@@ -13,6 +13,8 @@
 #include <filesystem>
 #include <set>
 
+#include "atlas_command.hpp"
+#include "atlas_report.hpp"
 #include "bench_command.hpp"
 #include "bench_report.hpp"
 #include "builtin_scenes.hpp"
@@ -173,6 +175,17 @@ int main(int argc, char** argv) {
   tradeoff_cmd->add_flag("--resume", tradeoff.resume, "continue a sweep: skip the runs already in tradeoff.csv");
   tradeoff_cmd->add_option("--time-limit", tradeoff.time_limit_seconds, "wall-time limit per run, seconds (3600)");
   tradeoff_cmd->add_option("--memory-limit-mb", tradeoff.memory_limit_mb, "resident-memory limit per run (90% of RAM)");
+  harness::AtlasOptions atlas;
+  auto* atlas_cmd = app.add_subcommand("atlas", "where each backend breaks: scene keys swept one at a time");
+  atlas_cmd->add_option("scene", atlas.scene, "base scene file (.toml) or built-in scene name")->required();
+  atlas_cmd->add_option("--level", atlas.level, "mesh level")->check(CLI::Range(0, 4));
+  atlas_cmd->add_option("--solvers", atlas.solvers, "backends (comma separated; default schur-amg,lu-mumps)")
+      ->delimiter(',');
+  atlas_cmd->add_option("--axis", atlas.axes, "KEY=v1,v2,... (a scene key path, or level); repeatable")->required();
+  atlas_cmd->add_option("--out", atlas.out_dir, "output directory (atlas.csv, report.md, runs/)");
+  atlas_cmd->add_flag("--resume", atlas.resume, "continue: skip the cells already in atlas.csv");
+  atlas_cmd->add_option("--time-limit", atlas.time_limit_seconds, "wall-time limit per cell, seconds (600)");
+  atlas_cmd->add_option("--memory-limit-mb", atlas.memory_limit_mb, "resident-memory limit per cell (90% of RAM)");
   std::string report_dir;
   auto* report_cmd = app.add_subcommand("report", "rebuild report.md of a sweep from its CSV files");
   report_cmd->add_option("dir", report_dir, "the sweep's output directory")->required();
@@ -192,6 +205,7 @@ int main(int argc, char** argv) {
     }
     if (*report_cmd) {
       if (std::filesystem::exists(report_dir + "/tradeoff.csv")) harness::write_tradeoff_report(report_dir);
+      else if (std::filesystem::exists(report_dir + "/atlas.csv")) harness::write_atlas_report(report_dir);
       else harness::write_bench_report(report_dir);
       return 0;
     }
@@ -215,6 +229,7 @@ int main(int argc, char** argv) {
       harness::run_solve(solve, harness::collect_run_info(argc, argv));
       reject_unused(petsc_given);
     }
+    if (*atlas_cmd) harness::run_atlas(atlas, harness::collect_run_info(argc, argv));
     if (*tradeoff_cmd) {
       tradeoff.petsc_options = petsc_pairs;
       harness::run_tradeoff(tradeoff, harness::collect_run_info(argc, argv));

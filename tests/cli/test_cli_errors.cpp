@@ -676,6 +676,52 @@ TEST_F(StictionCli, SetChangesASceneKeyForOneRun) {
   }
 }
 
+// The stability atlas, short: hertz-cylinder-2d with friction 0 and 1 and with one Newton
+// iteration per increment allowed, for schur-amg and boomeramg (which cannot solve a contact
+// system). Whatever the tuning, every cell ends converged or with a named reason and exit
+// code 3, no output holds a NaN, and the report says no cell broke what must hold; a cell
+// stopped by the time limit is a hang, and the report names it.
+TEST_F(StictionCli, AtlasNamesEveryCellsEndAndReportsAHang) {
+  const CliRun atlas = CliRun::of({"atlas", "hertz-cylinder-2d", "--solvers", "schur-amg,boomeramg", "--axis",
+                                   "contact[0].friction=0,1", "--axis", "newton.max_iterations=1", "--out", "atlas"},
+                                  dir_);
+  ASSERT_EQ(atlas.exit_code, 0) << atlas.err;
+  const auto rows = stiction::harness::read_csv((dir_ / "atlas" / "atlas.csv").string()).rows;
+  ASSERT_EQ(rows.size(), 6u);
+  int converged = 0, failed = 0;
+  for (const auto& row : rows) {
+    SCOPED_TRACE(row.at("axis") + " = " + row.at("value") + ", " + row.at("solver"));
+    EXPECT_TRUE(row.at("status") == "ok" || row.at("status") == "newton-failed") << row.at("status");
+    EXPECT_EQ(row.at("exit_code"), row.at("status") == "ok" ? "0" : "3");
+    EXPECT_FALSE(row.at("reason").empty());
+    EXPECT_EQ(row.at("nan_in_output"), "0");
+    EXPECT_EQ(row.at("violation"), "");
+    (row.at("status") == "ok" ? converged : failed) += 1;
+  }
+  EXPECT_GE(converged, 2) << "schur-amg converges with friction 0 and 1";
+  EXPECT_GE(failed, 3) << "boomeramg on every cell";
+  const std::string report = read_file(dir_ / "atlas" / "report.md");
+  EXPECT_NE(report.find("None: every cell converged or named why"), std::string::npos) << report;
+  EXPECT_NE(report.find("## contact[0].friction"), std::string::npos);
+  fs::remove(dir_ / "atlas" / "report.md");
+  ASSERT_EQ(CliRun::of({"report", (dir_ / "atlas").string()}, dir_).exit_code, 0);
+  EXPECT_EQ(read_file(dir_ / "atlas" / "report.md"), report);
+
+  const CliRun slow = CliRun::of({"atlas", "hertz-cylinder-2d", "--solvers", "schur-amg", "--axis", "level=3",
+                                  "--time-limit", "1", "--out", "slow"},
+                                 dir_);
+  ASSERT_EQ(slow.exit_code, 0) << slow.err;
+  const auto slow_rows = stiction::harness::read_csv((dir_ / "slow" / "atlas.csv").string()).rows;
+  ASSERT_EQ(slow_rows.size(), 1u);
+  EXPECT_EQ(slow_rows[0].at("status"), "time-limit");
+  EXPECT_EQ(slow_rows[0].at("violation"), "hang");
+  EXPECT_NE(read_file(dir_ / "slow" / "report.md").find("**hang**"), std::string::npos);
+
+  const CliRun misspelt = CliRun::of({"atlas", "hertz-cylinder-2d", "--axis", "contact[0].frction=1", "--out", "bad"}, dir_);
+  EXPECT_EQ(misspelt.exit_code, 2);
+  EXPECT_FALSE(fs::exists(dir_ / "bad" / "atlas.csv")) << "refused before any cell ran";
+}
+
 // With a memory limit in the environment (as `stiction bench` sets for its runs), the
 // MUMPS backends compare MUMPS's estimate after analysis with what the process may still
 // use and refuse a factorisation that would not fit: a named failure with the estimate,

@@ -1,0 +1,152 @@
+#include "atlas_command.hpp"
+
+#include <fmt/format.h>
+
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "atlas_report.hpp"
+#include "builtin_scenes.hpp"
+#include "common/error.hpp"
+#include "csv_table.hpp"
+#include "registry.hpp"
+#include "solve_child.hpp"
+
+namespace stiction::harness {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Axis {
+  std::string key;
+  std::vector<std::string> values;
+};
+
+Axis parse_axis(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
+    throw Error(fmt::format("axis '{}' is not KEY=v1,v2,...", text));
+  Axis a{text.substr(0, eq), {}};
+  std::istringstream list(text.substr(eq + 1));
+  for (std::string v; std::getline(list, v, ',');)
+    if (!v.empty()) a.values.push_back(v);
+  if (a.key == "level")
+    for (const auto& v : a.values)
+      if (v.size() != 1 || v[0] < '0' || v[0] > '4') throw Error(fmt::format("axis level: '{}' is not a level 0-4", v));
+  return a;
+}
+
+// A directory name for a cell: the key's brackets and any other non-word character as '_'.
+std::string cell_id(const std::string& key, const std::string& value, const std::string& solver) {
+  std::string id = key + "=" + value + "-" + solver;
+  for (char& c : id)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '=' && c != '-' && c != '.') c = '_';
+  return id;
+}
+
+// Whether any of the run's text outputs holds a NaN ("nan", "-nan", "NaN" as a field).
+bool nan_in_outputs(const std::string& run_dir) {
+  static const std::regex nan(R"((^|[,\s=])-?nan([,\s]|$))", std::regex::icase);
+  for (const char* file : {"steps.csv", "iterations.csv", "contact.csv", "metrics.toml"}) {
+    std::ifstream in(run_dir + "/" + file);
+    for (std::string line; std::getline(in, line);)
+      if (line.empty() || line[0] != '#')
+        if (std::regex_search(line, nan)) return true;
+  }
+  return false;
+}
+
+// Sum of the steps.csv column state_changes (0 without contact).
+double state_changes(const std::string& run_dir) {
+  double sum = 0;
+  for (const auto& row : read_csv(run_dir + "/steps.csv").rows) sum += number(row, "state_changes");
+  return sum;
+}
+
+// What must hold in every cell: it ends converged, or with a named Newton reason and exit
+// code 3; never a crash, a hang or a NaN in its output.
+std::string violation_of(const SolveRun& run, bool nan) {
+  if (nan) return "nan";
+  if (run.status == "time-limit") return "hang";
+  if (run.status == "ok") return "";
+  if (run.status == "newton-failed") return run.reason.empty() ? "unnamed failure" : "";
+  if (run.status == "memory-limit") return "";  // a named resource limit, not a defect of the method
+  if (run.child.exit_code == 2) return "";       // bad input, named (e.g. a value the scene refuses)
+  return "crash";
+}
+
+}  // namespace
+
+void run_atlas(const AtlasOptions& o, const RunInfo& info) {
+  if (o.axes.empty()) throw Error("atlas: give at least one --axis KEY=v1,v2,...");
+  std::vector<Axis> axes;
+  for (const auto& text : o.axes) axes.push_back(parse_axis(text));
+  std::set<std::string> known;
+  for (const auto& b : solvers::backends()) known.insert(b.name);
+  for (const auto& s : o.solvers)
+    if (!known.count(s)) throw Error(fmt::format("unknown solver backend '{}' (valid: {})", s, solvers::backend_names()));
+  // Every value must make a scene that builds: a misspelt key fails here, before any run.
+  for (const auto& a : axes)
+    for (const auto& v : a.values)
+      if (a.key == "level") open_scene(o.scene, std::stoi(v));
+      else open_scene(o.scene, o.level, {a.key + "=" + v});
+
+  const std::string out = o.out_dir, csv = out + "/atlas.csv";
+  std::error_code ec;
+  fs::create_directories(fs::path(out) / "runs", ec);
+  if (ec) throw Error(fmt::format("cannot create '{}': {}", out, ec.message()));
+  std::set<std::string> done;
+  if (fs::exists(csv)) {
+    if (!o.resume) throw Error(fmt::format("'{}' exists: pass --resume to continue that atlas or choose another --out", csv));
+    const CsvTable previous = read_csv(csv);
+    std::string columns;
+    for (const auto& c : previous.columns) columns += (columns.empty() ? "" : ",") + c;
+    if (columns != kAtlasColumns)
+      throw Error(fmt::format("'{}' has other columns than this stiction writes: start a new atlas in another --out", csv));
+    for (const auto& row : previous.rows) done.insert(cell_id(row.at("axis"), row.at("value"), row.at("solver")));
+    append_durably(csv, "# resumed: " + info.command_line + " at " + info.date + ", git " + info.git_revision);
+  } else {
+    std::string header = format_run_info(info, "# ");
+    header += fmt::format("# base scene: {} level {}\n# limits per cell: {:.0f} s, {:.0f} MB resident\n", o.scene,
+                          o.level, o.time_limit_seconds,
+                          o.memory_limit_mb > 0 ? o.memory_limit_mb : 0.9 * physical_memory_mb());
+    append_durably(csv, header + kAtlasColumns);
+  }
+  const ChildLimits limits{o.time_limit_seconds, o.memory_limit_mb > 0 ? o.memory_limit_mb : 0.9 * physical_memory_mb()};
+  setenv("STICTION_MEMORY_LIMIT_MB", fmt::format("{:.0f}", limits.memory_mb).c_str(), 1);
+
+  size_t cells = 0, index = 0;
+  for (const auto& a : axes) cells += a.values.size() * o.solvers.size();
+  for (const auto& a : axes)
+    for (const auto& value : a.values)
+      for (const auto& solver : o.solvers) {
+        ++index;
+        const std::string id = cell_id(a.key, value, solver);
+        if (done.count(id)) continue;
+        const std::string run_dir = (fs::path(out) / "runs" / id).string();
+        const bool by_level = a.key == "level";
+        std::vector<std::string> arguments{"--solver", solver};
+        if (!by_level) arguments.insert(arguments.end(), {"--set", a.key + "=" + value});
+        const SolveRun run =
+            run_solve_child(o.scene, by_level ? std::stoi(value) : o.level, arguments, {}, run_dir, limits);
+        const bool nan = nan_in_outputs(run_dir);
+        const std::string violation = violation_of(run, nan);
+        append_durably(csv, fmt::format("{},{},{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.3f},{:.1f},{},{},{}", o.scene,
+                                        by_level ? value : std::to_string(o.level), a.key, value, solver, run.status,
+                                        csv_field(run.reason.empty() ? run.status : run.reason),
+                                        run.child.exit_code, run.newton, run.krylov, state_changes(run_dir),
+                                        run.wall_seconds, run.child.peak_rss_mb, nan ? 1 : 0, violation,
+                                        csv_field(run.detail)));
+        fmt::print(stderr, "atlas [{}/{}] {} = {}, {}: {}{}\n", index, cells, a.key, value, solver,
+                   run.reason.empty() ? run.status : run.reason, violation.empty() ? "" : " (VIOLATION: " + violation + ")");
+        write_atlas_report(out);
+      }
+  write_atlas_report(out);
+}
+
+}  // namespace stiction::harness

@@ -1,0 +1,117 @@
+#include "atlas_report.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+#include <vector>
+
+#include "csv_table.hpp"
+#include "scaling_plots.hpp"
+
+namespace stiction::harness {
+
+const char* const kAtlasColumns =
+    "scene,level,axis,value,solver,status,reason,exit_code,newton_iterations,krylov_iterations,state_changes,"
+    "wall_seconds,peak_rss_mb,nan_in_output,violation,detail";
+
+namespace {
+
+using Row = std::map<std::string, std::string>;
+
+std::string cell_text(const Row& r) {
+  std::string text = r.at("status") == "ok"
+                         ? fmt::format("{} N / {} K", r.at("newton_iterations"), r.at("krylov_iterations"))
+                         : r.at("reason");
+  if (!r.at("violation").empty()) text += " **" + r.at("violation") + "**";
+  return text;
+}
+
+// Heat map of one axis: a square per (value, backend), coloured by Newton iterations when
+// the cell converged, a cross where it did not. Returns the markdown that shows it.
+std::string heat_map(const std::string& out_dir, const std::string& axis, const std::vector<std::string>& values,
+                     const std::vector<std::string>& solvers, const std::map<std::pair<std::string, std::string>, const Row*>& cells,
+                     int index) {
+  std::string ok, failed;
+  for (size_t i = 0; i < values.size(); ++i)
+    for (size_t j = 0; j < solvers.size(); ++j) {
+      const auto it = cells.find({values[i], solvers[j]});
+      if (it == cells.end()) continue;
+      if (it->second->at("status") == "ok") ok += fmt::format("{} {} {}\n", i, j, it->second->at("newton_iterations"));
+      else failed += fmt::format("{} {}\n", i, j);
+    }
+  std::string xtics, ytics;
+  for (size_t i = 0; i < values.size(); ++i) xtics += fmt::format("{}'{}' {}", i ? ", " : "", values[i], i);
+  for (size_t j = 0; j < solvers.size(); ++j) ytics += fmt::format("{}'{}' {}", j ? ", " : "", solvers[j], j);
+  const std::string stem = fmt::format("atlas-axis-{}", index);
+  // gnuplot needs at least one point per data block: a point outside the range stands in.
+  write_text_file(out_dir + "/" + stem + ".dat", "# converged: value_index solver_index newton_iterations\n" +
+                                                      (ok.empty() ? "-10 -10 0\n" : ok) + "\n\n# failed\n" +
+                                                      (failed.empty() ? "-10 -10\n" : failed));
+  write_text_file(out_dir + "/" + stem + ".gp",
+                  fmt::format("# Redraw with: gnuplot {0}.gp (in this directory)\n"
+                              "set terminal svg size {1},{2} dynamic font 'sans,12'\nset output '{0}.svg'\n"
+                              "set title \"{3}\" noenhanced\nset xrange [-0.5:{4}.5]\nset yrange [-0.5:{5}.5]\n"
+                              "set xtics ({6}) noenhanced\nset ytics ({7}) noenhanced\nset cblabel 'Newton iterations'\n"
+                              "set palette defined (0 '#1a9850', 1 '#fee08b', 2 '#d73027')\nset key below\n"
+                              "plot '{0}.dat' index 0 using 1:2:3 with points pt 5 ps 5 lc palette title 'converged', \\\n"
+                              "     '{0}.dat' index 1 using 1:2 with points pt 2 ps 4 lw 3 lc rgb 'black' title 'failed'\n",
+                              stem, 200 + 90 * values.size(), 160 + 60 * solvers.size(), axis, values.size() - 1,
+                              solvers.size() - 1, xtics, ytics));
+  if (!draw_with_gnuplot(out_dir, stem))
+    return fmt::format("Heat map not drawn: gnuplot failed or is missing (`{0}.log`); `{0}.gp` draws it.\n", stem);
+  return fmt::format("![{}]({}.svg)\n", axis, stem);
+}
+
+}  // namespace
+
+void write_atlas_report(const std::string& out_dir) {
+  const CsvTable table = read_csv(out_dir + "/atlas.csv");
+  std::string md = "# Stability atlas";
+  if (!table.rows.empty()) md += ": " + table.rows.front().at("scene");
+  md += "\n\nHow it was made:\n\n```\n";
+  for (const auto& c : table.comments) md += c + "\n";
+  md += "```\n\nEach cell is the base scene with one key changed (`stiction solve SCENE --set KEY=VALUE`), run "
+        "in its own process. A converged cell shows its Newton (N) and Krylov (K) iterations; a failed one its "
+        "named reason. What must hold in every cell: it ends converged or with a named reason (exit code 3), "
+        "never a crash, a hang (the time limit) or a NaN in its output.\n\n## Cells that broke what must hold\n\n";
+  std::vector<std::string> axes;
+  std::map<std::string, std::vector<std::string>> values, solvers;
+  std::map<std::string, std::map<std::pair<std::string, std::string>, const Row*>> cells;
+  int violations = 0;
+  for (const auto& r : table.rows) {
+    const std::string& axis = r.at("axis");
+    if (!values.count(axis)) axes.push_back(axis);
+    auto& v = values[axis];
+    if (std::find(v.begin(), v.end(), r.at("value")) == v.end()) v.push_back(r.at("value"));
+    auto& s = solvers[axis];
+    if (std::find(s.begin(), s.end(), r.at("solver")) == s.end()) s.push_back(r.at("solver"));
+    cells[axis][{r.at("value"), r.at("solver")}] = &r;
+    if (!r.at("violation").empty()) {
+      ++violations;
+      md += fmt::format("* {} = {}, {}: **{}** ({})\n", axis, r.at("value"), r.at("solver"), r.at("violation"),
+                        r.at("detail"));
+    }
+  }
+  if (!violations) md += "None: every cell converged or named why it did not.\n";
+  int index = 0;
+  for (const auto& axis : axes) {
+    md += fmt::format("\n## {}\n\n| {} |", axis, axis);
+    for (const auto& s : solvers[axis]) md += " " + s + " |";
+    md += "\n|---|";
+    for (size_t k = 0; k < solvers[axis].size(); ++k) md += "---|";
+    md += "\n";
+    for (const auto& v : values[axis]) {
+      md += "| " + v + " |";
+      for (const auto& s : solvers[axis]) {
+        const auto it = cells[axis].find({v, s});
+        md += " " + (it == cells[axis].end() ? std::string("—") : cell_text(*it->second)) + " |";
+      }
+      md += "\n";
+    }
+    md += "\n" + heat_map(out_dir, axis, values[axis], solvers[axis], cells[axis], index++);
+  }
+  write_text_file(out_dir + "/report.md", md);
+}
+
+}  // namespace stiction::harness
