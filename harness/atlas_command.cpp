@@ -32,8 +32,11 @@ Axis parse_axis(const std::string& text) {
   if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
     throw Error(fmt::format("axis '{}' is not KEY=v1,v2,...", text));
   Axis a{text.substr(0, eq), {}};
-  std::istringstream list(text.substr(eq + 1));
-  for (std::string v; std::getline(list, v, ',');)
+  // Values that hold commas themselves (arrays, inline tables) are separated by ';'.
+  const std::string values = text.substr(eq + 1);
+  const char separator = values.find(';') != std::string::npos ? ';' : ',';
+  std::istringstream list(values);
+  for (std::string v; std::getline(list, v, separator);)
     if (!v.empty()) a.values.push_back(v);
   if (a.key == "level")
     for (const auto& v : a.values)
@@ -41,7 +44,8 @@ Axis parse_axis(const std::string& text) {
   return a;
 }
 
-// A directory name for a cell: the key's brackets and any other non-word character as '_'.
+// A directory name for a cell, and its key in atlas.csv: the key's brackets and any other
+// non-word character as '_' (so a value's commas, which atlas.csv holds as ';', match).
 std::string cell_id(const std::string& key, const std::string& value, const std::string& solver) {
   std::string id = key + "=" + value + "-" + solver;
   for (char& c : id)
@@ -112,8 +116,8 @@ void run_atlas(const AtlasOptions& o, const RunInfo& info) {
     append_durably(csv, "# resumed: " + info.command_line + " at " + info.date + ", git " + info.git_revision);
   } else {
     std::string header = format_run_info(info, "# ");
-    header += fmt::format("# base scene: {} level {}\n# limits per cell: {:.0f} s, {:.0f} MB resident\n", o.scene,
-                          o.level, o.time_limit_seconds,
+    header += fmt::format("# base scene: {} level {}{}\n# limits per cell: {:.0f} s, {:.0f} MB resident\n", o.scene,
+                          o.level, o.quick ? " (its short version, --quick)" : "", o.time_limit_seconds,
                           o.memory_limit_mb > 0 ? o.memory_limit_mb : 0.9 * physical_memory_mb());
     append_durably(csv, header + kAtlasColumns);
   }
@@ -132,12 +136,14 @@ void run_atlas(const AtlasOptions& o, const RunInfo& info) {
         const bool by_level = a.key == "level";
         std::vector<std::string> arguments{"--solver", solver};
         if (!by_level) arguments.insert(arguments.end(), {"--set", a.key + "=" + value});
+        if (o.quick) arguments.push_back("--quick");
         const SolveRun run =
             run_solve_child(o.scene, by_level ? std::stoi(value) : o.level, arguments, {}, run_dir, limits);
         const bool nan = nan_in_outputs(run_dir);
         const std::string violation = violation_of(run, nan);
         append_durably(csv, fmt::format("{},{},{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.3f},{:.1f},{},{},{}", o.scene,
-                                        by_level ? value : std::to_string(o.level), a.key, value, solver, run.status,
+                                        by_level ? value : std::to_string(o.level), csv_field(a.key),
+                                        csv_field(value), solver, run.status,
                                         csv_field(run.reason.empty() ? run.status : run.reason),
                                         run.child.exit_code, run.newton, run.krylov, state_changes(run_dir),
                                         run.wall_seconds, run.child.peak_rss_mb, nan ? 1 : 0, violation,

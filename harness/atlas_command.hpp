@@ -21,6 +21,7 @@ struct AtlasOptions {
   std::vector<std::string> axes;  // "KEY=v1,v2,..." (KEY a scene key path, or "level")
   std::string out_dir = "reports/atlas";
   bool resume = false;
+  bool quick = false;  // every cell runs the scene's short version (its load.quick_until)
   double time_limit_seconds = 600;
   double memory_limit_mb = 0;  // 0: 90% of the machine's memory
 };
