@@ -97,8 +97,13 @@ void run_atlas(const AtlasOptions& o, const RunInfo& info) {
   // Every value must make a scene that builds: a misspelt key fails here, before any run.
   for (const auto& a : axes)
     for (const auto& v : a.values)
-      if (a.key == "level") open_scene(o.scene, std::stoi(v));
-      else open_scene(o.scene, o.level, {a.key + "=" + v});
+      if (a.key == "level") {
+        open_scene(o.scene, std::stoi(v), o.base);
+      } else {
+        std::vector<std::string> settings = o.base;
+        settings.push_back(a.key + "=" + v);
+        open_scene(o.scene, o.level, settings);
+      }
 
   const std::string out = o.out_dir, csv = out + "/atlas.csv";
   std::error_code ec;
@@ -119,6 +124,7 @@ void run_atlas(const AtlasOptions& o, const RunInfo& info) {
     header += fmt::format("# base scene: {} level {}{}\n# limits per cell: {:.0f} s, {:.0f} MB resident\n", o.scene,
                           o.level, o.quick ? " (its short version, --quick)" : "", o.time_limit_seconds,
                           o.memory_limit_mb > 0 ? o.memory_limit_mb : 0.9 * physical_memory_mb());
+    for (const auto& setting : o.base) header += "# base setting: " + setting + "\n";
     append_durably(csv, header + kAtlasColumns);
   }
   const ChildLimits limits{o.time_limit_seconds, o.memory_limit_mb > 0 ? o.memory_limit_mb : 0.9 * physical_memory_mb()};
@@ -135,6 +141,7 @@ void run_atlas(const AtlasOptions& o, const RunInfo& info) {
         const std::string run_dir = (fs::path(out) / "runs" / id).string();
         const bool by_level = a.key == "level";
         std::vector<std::string> arguments{"--solver", solver};
+        for (const auto& setting : o.base) arguments.insert(arguments.end(), {"--set", setting});
         if (!by_level) arguments.insert(arguments.end(), {"--set", a.key + "=" + value});
         if (o.quick) arguments.push_back("--quick");
         const SolveRun run =

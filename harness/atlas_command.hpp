@@ -19,6 +19,7 @@ struct AtlasOptions {
   int level = 0;
   std::vector<std::string> solvers{"schur-amg", "lu-mumps"};
   std::vector<std::string> axes;  // "KEY=v1,v2,..." (KEY a scene key path, or "level")
+  std::vector<std::string> base;  // KEY=VALUE settings of the base scene, in every cell
   std::string out_dir = "reports/atlas";
   bool resume = false;
   bool quick = false;  // every cell runs the scene's short version (its load.quick_until)

@@ -184,6 +184,7 @@ int main(int argc, char** argv) {
   atlas_cmd->add_option("--axis", atlas.axes, "KEY=v1,v2,... (a scene key path, or level; ';' between values that hold commas); repeatable")->required();
   atlas_cmd->add_option("--out", atlas.out_dir, "output directory (atlas.csv, report.md, runs/)");
   atlas_cmd->add_flag("--resume", atlas.resume, "continue: skip the cells already in atlas.csv");
+  atlas_cmd->add_option("--set", atlas.base, "a key of the base scene, KEY=VALUE, in every cell; repeatable");
   atlas_cmd->add_flag("--quick", atlas.quick, "every cell runs the scene's short version (its load.quick_until)");
   atlas_cmd->add_option("--time-limit", atlas.time_limit_seconds, "wall-time limit per cell, seconds (600)");
   atlas_cmd->add_option("--memory-limit-mb", atlas.memory_limit_mb, "resident-memory limit per cell (90% of RAM)");
