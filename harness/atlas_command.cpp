@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -42,15 +41,6 @@ Axis parse_axis(const std::string& text) {
     for (const auto& v : a.values)
       if (v.size() != 1 || v[0] < '0' || v[0] > '4') throw Error(fmt::format("axis level: '{}' is not a level 0-4", v));
   return a;
-}
-
-// A directory name for a cell, and its key in atlas.csv: the key's brackets and any other
-// non-word character as '_' (so a value's commas, which atlas.csv holds as ';', match).
-std::string cell_id(const std::string& key, const std::string& value, const std::string& solver) {
-  std::string id = key + "=" + value + "-" + solver;
-  for (char& c : id)
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '=' && c != '-' && c != '.') c = '_';
-  return id;
 }
 
 // Whether any of the run's text outputs holds a NaN ("nan", "-nan", "NaN" as a field).

@@ -2,7 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <toml++/toml.h>
+
 #include <algorithm>
+#include <cctype>
 #include <map>
 #include <vector>
 
@@ -15,9 +18,43 @@ const char* const kAtlasColumns =
     "scene,level,axis,value,solver,status,reason,exit_code,newton_iterations,krylov_iterations,state_changes,"
     "wall_seconds,peak_rss_mb,nan_in_output,violation,detail";
 
+std::string cell_id(const std::string& key, const std::string& value, const std::string& solver) {
+  std::string id = key + "=" + value + "-" + solver;
+  for (char& c : id)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '=' && c != '-' && c != '.') c = '_';
+  return id;
+}
+
 namespace {
 
 using Row = std::map<std::string, std::string>;
+
+// Why a cell failed, from its run's metrics.toml: the Newton verdict's detail and the last
+// linear solve (its reason, Krylov iterations, the residual reduction reached against the
+// one asked, the AMG operator complexity where there is one).
+std::string why_it_failed(const std::string& out_dir, const Row& r) {
+  std::string why = r.at("detail").empty() ? r.at("reason") : r.at("reason") + ": " + r.at("detail");
+  toml::table metrics;
+  try {
+    metrics = toml::parse_file(out_dir + "/runs/" + cell_id(r.at("axis"), r.at("value"), r.at("solver")) +
+                               "/metrics.toml");
+  } catch (const std::exception&) {
+    return why;
+  }
+  const toml::array* solves = metrics["linear_solve"].as_array();
+  if (!solves || solves->empty() || !solves->back().as_table()) return why;
+  const toml::table& last = *solves->back().as_table();
+  why += fmt::format("; last linear solve {}", last["reason"].value<std::string>().value_or("?"));
+  const double b = last["initial_residual"].value<double>().value_or(0),
+               res = last["final_residual"].value<double>().value_or(0);
+  if (const auto its = last["krylov_iterations"].value<int64_t>(); its && *its > 0) {
+    why += fmt::format(" after {} Krylov iterations", *its);
+    if (b > 0) why += fmt::format(", residual reduced to {:.1e}", res / b);
+    if (const auto rtol = last["ksp_rtol"].value<double>()) why += fmt::format(" (asked {:g})", *rtol);
+  }
+  if (const auto c = last["amg_operator_complexity"].value<double>()) why += fmt::format(", AMG operator complexity {:.2f}", *c);
+  return why;
+}
 
 std::string cell_text(const Row& r) {
   std::string text = r.at("status") == "ok"
@@ -94,6 +131,11 @@ void write_atlas_report(const std::string& out_dir) {
     }
   }
   if (!violations) md += "None: every cell converged or named why it did not.\n";
+  std::string failures;
+  for (const auto& r : table.rows)
+    if (r.at("status") != "ok")
+      failures += fmt::format("* {} = {}, {}: {}\n", r.at("axis"), r.at("value"), r.at("solver"), why_it_failed(out_dir, r));
+  if (!failures.empty()) md += "\n## Why cells failed\n\n" + failures;
   int index = 0;
   for (const auto& axis : axes) {
     md += fmt::format("\n## {}\n\n| {} |", axis, axis);

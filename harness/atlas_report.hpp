@@ -8,6 +8,10 @@ namespace stiction::harness {
 
 extern const char* const kAtlasColumns;
 
+// A cell's directory under runs/ and its key in atlas.csv: the key's brackets and any other
+// non-word character as '_' (so a value's commas, which atlas.csv holds as ';', match).
+std::string cell_id(const std::string& key, const std::string& value, const std::string& solver);
+
 void write_atlas_report(const std::string& out_dir);
 
 }  // namespace stiction::harness

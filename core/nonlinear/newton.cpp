@@ -511,9 +511,12 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
       return finish(rnorm <= settings_.atol ? NewtonReason::ConvergedAbsolute : NewtonReason::ConvergedRelative);
     }
     if (it == settings_.max_iterations) {
-      res.detail = fmt::format("{} iterations, residual {:.3e} above tolerance {:.3e}", it, rnorm, tol);
+      res.detail = fmt::format("{} iterations, residual {:.3e} {} tolerance {:.3e}", it, rnorm,
+                               rnorm > tol ? "above" : "within", tol);
       if (!lambda_.empty())
-        res.detail += fmt::format(" (contact residual {:.3e}, {} states changed last)", cnorm, last_changes);
+        res.detail += fmt::format(" (contact residual {:.3e} {} its tolerance {:.3e}, {} states changed last)", cnorm,
+                                  cnorm > std::max(settings_.atol, settings_.rtol * c_reference) ? "above" : "within",
+                                  std::max(settings_.atol, settings_.rtol * c_reference), last_changes);
       return finish(NewtonReason::DivergedMaxIterations);
     }
 

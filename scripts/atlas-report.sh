@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# The stability atlas (reports/atlas/): the base scenes' keys swept one at a time for the
+# Schur backends, PETSc's field split and lu-mumps, each cell its own process
+# (`stiction atlas`, see README). ATLAS_OUT (default reports/atlas) and ATLAS_TIME_LIMIT
+# (seconds per cell, default 600) adjust it; --resume continues an interrupted one.
+# Usage: scripts/atlas-report.sh [build dir]
+set -euo pipefail
+build=${1:-build}
+out=${ATLAS_OUT:-reports/atlas}
+limit=${ATLAS_TIME_LIMIT:-600}
+export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
+source "$(dirname "$0")/ensure-gnuplot.sh"
+mkdir -p "$out"
+atlas() { local dir=$1; shift; "$build/stiction" atlas "$@" --time-limit "$limit" --out "$out/$dir" --resume; }
+
+# Large sliding with friction, two deformable bodies: the pressing and the first two sliding
+# steps (--quick). Indenter stiffness against the slab's 689.6: contrast 1 to 1e4.
+atlas ironing-2d ironing-2d --quick --solvers schur-amg,schur-gamg,fieldsplit-schur,lu-mumps \
+  --axis 'contact[0].friction=0,0.3,0.6,1,2' \
+  --axis 'material[1].E=689.6,6896,68960,689600,6896000' \
+  --axis 'contact[0].tangential_penalty=1e-6,1e-3,1,1e3,1e6' \
+  --axis 'load.phases=[{until = 1.0, steps = 2}, {until = 2.0, steps = 200}];[{until = 1.0, steps = 5}, {until = 2.0, steps = 200}];[{until = 1.0, steps = 20}, {until = 2.0, steps = 200}]' \
+  --axis 'level=0,1'
+
+# Near-incompressibility: bulk to shear modulus kappa / mu10 from 1e1 to 1e6, mixed u-p (the
+# paper's) and displacement only.
+kappa='material[0].kappa=10,100,1000,10000,100000,1000000'
+atlas cook-membrane-2d-mixed cook-membrane-2d --solvers schur-amg,schur-gamg,fieldsplit-schur,lu-mumps --axis "$kappa"
+atlas cook-membrane-2d-displacement cook-membrane-2d --set 'material[0].formulation="displacement"' \
+  --solvers schur-amg,schur-gamg,gamg,lu-mumps --axis "$kappa"
+echo "atlas-report: wrote $out" >&2
