@@ -14,6 +14,7 @@
 #include "csv_table.hpp"
 #include "registry.hpp"
 #include "solve_child.hpp"
+#include "sweep_table.hpp"
 
 namespace stiction::harness {
 
@@ -100,23 +101,15 @@ void run_atlas(const AtlasOptions& o, const RunInfo& info) {
   fs::create_directories(fs::path(out) / "runs", ec);
   if (ec) throw Error(fmt::format("cannot create '{}': {}", out, ec.message()));
   std::set<std::string> done;
-  if (fs::exists(csv)) {
-    if (!o.resume) throw Error(fmt::format("'{}' exists: pass --resume to continue that atlas or choose another --out", csv));
-    const CsvTable previous = read_csv(csv);
-    std::string columns;
-    for (const auto& c : previous.columns) columns += (columns.empty() ? "" : ",") + c;
-    if (columns != kAtlasColumns)
-      throw Error(fmt::format("'{}' has other columns than this stiction writes: start a new atlas in another --out", csv));
-    for (const auto& row : previous.rows) done.insert(cell_id(row.at("axis"), row.at("value"), row.at("solver")));
-    append_durably(csv, "# resumed: " + info.command_line + " at " + info.date + ", git " + info.git_revision);
-  } else {
+  const CsvTable previous = open_sweep_table(csv, kAtlasColumns, o.resume, info, [&] {
     std::string header = format_run_info(info, "# ");
     header += fmt::format("# base scene: {} level {}{}\n# limits per cell: {:.0f} s, {:.0f} MB resident\n", o.scene,
                           o.level, o.quick ? " (its short version, --quick)" : "", o.time_limit_seconds,
                           o.memory_limit_mb > 0 ? o.memory_limit_mb : 0.9 * physical_memory_mb());
     for (const auto& setting : o.base) header += "# base setting: " + setting + "\n";
-    append_durably(csv, header + kAtlasColumns);
-  }
+    return header;
+  });
+  for (const auto& row : previous.rows) done.insert(cell_id(row.at("axis"), row.at("value"), row.at("solver")));
   const ChildLimits limits{o.time_limit_seconds, o.memory_limit_mb > 0 ? o.memory_limit_mb : 0.9 * physical_memory_mb()};
   setenv("STICTION_MEMORY_LIMIT_MB", fmt::format("{:.0f}", limits.memory_mb).c_str(), 1);
 

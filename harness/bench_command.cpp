@@ -19,6 +19,8 @@
 #include "ksp_solver.hpp"
 #include "registry.hpp"
 #include "run_metrics.hpp"
+#include "solve_child.hpp"
+#include "sweep_table.hpp"
 
 namespace stiction::harness {
 
@@ -42,14 +44,6 @@ struct Run {
   std::string key() const { return fmt::format("{}|{}|{}", scene, level, solver); }
   std::string id() const { return fmt::format("{}-L{}-{}", fs::path(scene).stem().string(), level, solver); }
 };
-
-std::string last_line(const std::string& path) {
-  std::ifstream in(path);
-  std::string line, last;
-  while (std::getline(in, line))
-    if (!line.empty()) last = line;
-  return last;
-}
 
 int count_data_lines(const std::string& path) {
   std::ifstream in(path);
@@ -192,23 +186,9 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
   const std::string runs_csv = out + "/runs.csv";
   std::set<std::string> done;
   std::map<std::string, double> finished_seconds;  // run key -> wall time (for the time-left estimate)
-  if (fs::exists(runs_csv)) {
-    if (!o.resume) throw Error(fmt::format("'{}' exists: pass --resume to continue that sweep or choose another --out", runs_csv));
-    const CsvTable previous = read_csv(runs_csv);
-    std::string columns;
-    for (const auto& c : previous.columns) columns += (columns.empty() ? "" : ",") + c;
-    if (columns != kRunColumns)
-      throw Error(fmt::format("'{}' has other columns than this stiction writes (an older version's sweep): start a "
-                              "new sweep in another --out",
-                              runs_csv));
-    for (const auto& row : previous.rows) {
-      const std::string key = fmt::format("{}|{}|{}", row.at("scene"), row.at("level"), row.at("solver"));
-      done.insert(key);
-      if (row.at("status") == "ok") finished_seconds[key] = std::strtod(row.at("wall_seconds").c_str(), nullptr);
-    }
-    append_durably(runs_csv, "# resumed: " + info.command_line + " at " + info.date + ", git " + info.git_revision);
-  } else {
-    std::string header = format_run_info(info, "# ");
+  std::string header;  // of a new sweep (steps.csv gets it too)
+  const CsvTable previous = open_sweep_table(runs_csv, kRunColumns, o.resume, info, [&] {
+    header = format_run_info(info, "# ");
     const double limit_mb = o.memory_limit_mb > 0 ? o.memory_limit_mb : 0.9 * physical_memory_mb();
     header += fmt::format("# limits per run: {:.0f} s, {:.0f} MB resident\n", o.time_limit_seconds, limit_mb);
     for (const auto& s : solvers_list)
@@ -219,9 +199,14 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
               (o.krylov_rtol < 0 ? std::string("as each scene sets it (newton.krylov_rtol, else the backend's)")
                                  : fmt::format("{:g}", o.krylov_rtol)) +
               "\n";
-    append_durably(runs_csv, header + kRunColumns);
-    append_durably(out + "/steps.csv", header + kStepColumns);
+    return header;
+  });
+  for (const auto& row : previous.rows) {
+    const std::string key = fmt::format("{}|{}|{}", row.at("scene"), row.at("level"), row.at("solver"));
+    done.insert(key);
+    if (row.at("status") == "ok") finished_seconds[key] = std::strtod(row.at("wall_seconds").c_str(), nullptr);
   }
+  if (!header.empty()) append_durably(out + "/steps.csv", header + kStepColumns);
 
   std::vector<Run> runs;
   for (int level : o.levels)

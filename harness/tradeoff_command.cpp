@@ -17,6 +17,7 @@
 #include "scaling_plots.hpp"
 #include "solution_accuracy.hpp"
 #include "solve_child.hpp"
+#include "sweep_table.hpp"
 #include "tradeoff_report.hpp"
 
 namespace stiction::harness {
@@ -155,16 +156,7 @@ void run_tradeoff(const TradeoffOptions& o, const RunInfo& info) {
   fs::create_directories(fs::path(out) / "runs", ec);
   if (ec) throw Error(fmt::format("cannot create '{}': {}", out, ec.message()));
   std::set<std::string> done;
-  if (fs::exists(csv)) {
-    if (!o.resume) throw Error(fmt::format("'{}' exists: pass --resume to continue that sweep or choose another --out", csv));
-    const CsvTable previous = read_csv(csv);
-    std::string columns;
-    for (const auto& c : previous.columns) columns += (columns.empty() ? "" : ",") + c;
-    if (columns != kTradeoffColumns)
-      throw Error(fmt::format("'{}' has other columns than this stiction writes: start a new sweep in another --out", csv));
-    for (const auto& row : previous.rows) done.insert(row.at("id"));
-    append_durably(csv, "# resumed: " + info.command_line + " at " + info.date + ", git " + info.git_revision);
-  } else {
+  const CsvTable previous = open_sweep_table(csv, kTradeoffColumns, o.resume, info, [&] {
     std::string header = format_run_info(info, "# ");
     header += fmt::format("# scene: {} level {} ({} unknowns)\n", scene->name, scene->level, scene->space->n_dofs());
     header += fmt::format("# reference: {} with newton rtol {:g} and its exact solves\n", o.reference_solver,
@@ -173,8 +165,9 @@ void run_tradeoff(const TradeoffOptions& o, const RunInfo& info) {
                           o.memory_limit_mb > 0 ? o.memory_limit_mb : 0.9 * physical_memory_mb());
     for (const auto& s : o.solvers) header += fmt::format("# backend {} options: {}\n", s, solvers::compact_options(s));
     for (const auto& opt : o.petsc_options) header += "# petsc option: " + opt + "\n";
-    append_durably(csv, header + kTradeoffColumns);
-  }
+    return header;
+  });
+  for (const auto& row : previous.rows) done.insert(row.at("id"));
   const ChildLimits limits{o.time_limit_seconds, o.memory_limit_mb > 0 ? o.memory_limit_mb : 0.9 * physical_memory_mb()};
   setenv("STICTION_MEMORY_LIMIT_MB", fmt::format("{:.0f}", limits.memory_mb).c_str(), 1);
 
