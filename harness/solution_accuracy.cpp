@@ -11,6 +11,7 @@
 #include "common/error.hpp"
 #include "csv_table.hpp"
 #include "fem/error_norms.hpp"
+#include "hertz_reference.hpp"
 
 namespace stiction::harness {
 
@@ -18,6 +19,8 @@ namespace {
 
 struct FinalState {
   std::vector<double> u;
+  // Every slave node in contact at the last step: its mesh vertex and multiplier magnitude.
+  std::vector<std::pair<int, double>> in_contact;
   std::vector<double> contact_force;           // every pair's F3 components, in column order
   double peak_pressure = 0;                    // largest lambda_n at the last step
   std::map<std::string, std::string> states;   // "pair/node" -> state at the last step
@@ -52,6 +55,12 @@ FinalState read_final_state(const scene::Scene& scene, const std::string& dir) {
     if (row.at("step") != final_step) continue;
     f.peak_pressure = std::max(f.peak_pressure, number(row, "lambda_n"));
     f.states[row.at("pair") + "/" + row.at("node")] = row.at("state");
+    if (row.at("state") != "inactive") {
+      double p2 = 0;
+      for (const char* k : {"lambda_x", "lambda_y", "lambda_z"})
+        if (row.count(k)) p2 += std::pow(number(row, k), 2);
+      f.in_contact.emplace_back(static_cast<int>(number(row, "vertex")), std::sqrt(p2));
+    }
   }
   return f;
 }
@@ -109,6 +118,20 @@ LevelDifference compare_levels(const scene::Scene& coarse, const std::string& co
     d.peak_pressure = relative(std::abs(c.peak_pressure - f.peak_pressure), f.peak_pressure);
   }
   return d;
+}
+
+std::optional<AnalyticAccuracy> analytic_accuracy(const scene::Scene& scene, const std::string& run_dir) {
+  const auto hertz = hertz_case(scene.name);
+  if (!hertz) return std::nullopt;
+  const FinalState f = read_final_state(scene, run_dir);
+  std::vector<std::pair<double, double>> profile;
+  for (const auto& [vertex, p] : f.in_contact) {
+    const double* X = scene.mesh.vertex(vertex);
+    profile.emplace_back(hertz->dim == 2 ? X[0] : std::hypot(X[0], X[2]), p);
+  }
+  if (profile.size() < 2 || f.contact_force.size() < 2) return std::nullopt;
+  const HertzComparison h = compare_with_hertz(*hertz, f.contact_force[1], profile);
+  return AnalyticAccuracy{h.a_error(), h.p0_error()};
 }
 
 }  // namespace stiction::harness

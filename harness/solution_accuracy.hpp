@@ -3,6 +3,7 @@
 // (the trade-off sweep's accuracy, never a proxy such as a residual): the displacement in
 // the L2 norm and the H1 seminorm, the contact force, the peak contact pressure and the
 // contact states at the last load step, each relative to the reference.
+#include <optional>
 #include <string>
 
 #include "scene/scene.hpp"
@@ -30,6 +31,14 @@ struct LevelDifference {
 
 LevelDifference compare_levels(const scene::Scene& coarse, const std::string& coarse_dir, const scene::Scene& fine,
                                const std::string& fine_dir);
+
+// Against the analytic solution, where the scene models one (reference/hertz): the
+// relative errors of the contact half-width (radius) and peak pressure fitted to the run's
+// final pressure profile, against Hertz's for its computed force.
+struct AnalyticAccuracy {
+  double hertz_a = 0, hertz_p0 = 0;
+};
+std::optional<AnalyticAccuracy> analytic_accuracy(const scene::Scene& scene, const std::string& run_dir);
 
 // run_dir and reference_dir are `stiction solve` output directories of `scene` (their
 // checkpoint.bin, steps.csv and contact.csv) that both completed every load step. Throws

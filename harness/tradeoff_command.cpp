@@ -93,10 +93,10 @@ std::string number_or_blank(double x, bool set) { return set ? fmt::format("{:.3
 
 // One row of tradeoff.csv (kTradeoffColumns); accuracy null: not measured.
 std::string row_of(const scene::Scene& scene, const std::string& id, const Setting& s, const SolveRun& run,
-                   const SolutionAccuracy* accuracy) {
+                   const SolutionAccuracy* accuracy, const std::optional<AnalyticAccuracy>& analytic) {
   const bool contact = accuracy && accuracy->contact;
   return fmt::format(
-      "{},{},{},{},{},{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.3f},{:.3f},{:.1f},{},{},{},{},{},{}", scene.name,
+      "{},{},{},{},{},{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.3f},{:.3f},{:.1f},{},{},{},{},{},{},{},{}", scene.name,
       scene.level, id, s.solver, s.forcing, s.newton_rtol >= 0 ? fmt::format("{:g}", s.newton_rtol) : "",
       s.krylov_rtol >= 0 ? fmt::format("{:g}", s.krylov_rtol) : "", s.knob, s.is_default() ? 1 : 0, run.status,
       csv_field(run.reason.empty() ? run.status : run.reason), run.newton, run.solves, run.krylov, run.wall_seconds,
@@ -104,7 +104,8 @@ std::string row_of(const scene::Scene& scene, const std::string& id, const Setti
       number_or_blank(accuracy ? accuracy->displacement_h1 : 0, accuracy),
       number_or_blank(contact ? accuracy->contact_force : 0, contact),
       number_or_blank(contact ? accuracy->peak_pressure : 0, contact), contact ? std::to_string(accuracy->state_changes) : "",
-      csv_field(run.detail));
+      number_or_blank(analytic ? analytic->hertz_a : 0, analytic.has_value()),
+      number_or_blank(analytic ? analytic->hertz_p0 : 0, analytic.has_value()), csv_field(run.detail));
 }
 
 // Solves the reference at `level` into dir (a row `id` of tradeoff.csv unless done has it);
@@ -118,7 +119,7 @@ void solve_reference(const TradeoffOptions& o, int level, const scene::Scene& sc
     throw Error(fmt::format("the reference run at level {} ({} with newton rtol {:g}) ended {}: {} (see {}/stderr.txt)",
                             level, o.reference_solver, o.reference_newton_rtol, run.status, run.detail, dir),
                 ErrorKind::Numerical);
-  if (!done.count(id)) append_durably(csv, row_of(scene, id, reference, run, nullptr));
+  if (!done.count(id)) append_durably(csv, row_of(scene, id, reference, run, nullptr, analytic_accuracy(scene, dir)));
   done.insert(id);
 }
 
@@ -203,7 +204,8 @@ void run_tradeoff(const TradeoffOptions& o, const RunInfo& info) {
     SolutionAccuracy a;
     const bool measured = run.status == "ok";
     if (measured) a = compare_to_reference(*scene, run_dir, reference_dir);
-    const std::string row = row_of(*scene, s.id(), s, run, measured ? &a : nullptr);
+    const std::string row = row_of(*scene, s.id(), s, run, measured ? &a : nullptr,
+                                   measured ? analytic_accuracy(*scene, run_dir) : std::nullopt);
     append_durably(csv, row);
     fmt::print(stderr, "tradeoff [{}/{}] {}: {} in {:.2f} s{}\n", index, settings.size(), s.id(), run.status,
                run.wall_seconds, measured ? fmt::format(", displacement error {:.2e} (H1)", a.displacement_h1) : "");

@@ -722,6 +722,32 @@ TEST_F(StictionCli, AtlasNamesEveryCellsEndAndReportsAHang) {
   EXPECT_FALSE(fs::exists(dir_ / "bad" / "atlas.csv")) << "refused before any cell ran";
 }
 
+// On a scene that models a Hertz case (reference/hertz) the sweep also compares each run
+// with Hertz: hertz-cylinder-2d level 0 fits the half-width and the peak pressure within
+// 0.3% (Hertz2D.CylinderOnRigidPlaneConvergesToHertz: 0.18% and 0.13%), the reference's
+// own figures included; on other scenes those columns stay empty.
+TEST_F(StictionCli, TradeoffComparesHertzScenesWithHertz) {
+  const CliRun sweep = CliRun::of({"tradeoff", "hertz-cylinder-2d", "--solvers", "schur-amg", "--newton-rtols", "1e-8",
+                                   "--krylov-rtols", "1e-6", "--out", "hertz"},
+                                  dir_);
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+  const auto rows = stiction::harness::read_csv((dir_ / "hertz" / "tradeoff.csv").string()).rows;
+  ASSERT_EQ(rows.size(), 3u);
+  for (const auto& row : rows) {
+    SCOPED_TRACE(row.at("id"));
+    ASSERT_FALSE(row.at("error_hertz_a").empty());
+    EXPECT_GT(stiction::harness::number(row, "error_hertz_a"), 0);
+    EXPECT_LT(stiction::harness::number(row, "error_hertz_a"), 3e-3);
+    EXPECT_LT(stiction::harness::number(row, "error_hertz_p0"), 3e-3);
+  }
+  const CliRun plain = CliRun::of({"tradeoff", "cantilever-2d", "--solvers", "lu-mumps", "--newton-rtols", "1e-8",
+                                   "--out", "plain"},
+                                  dir_);
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  for (const auto& row : stiction::harness::read_csv((dir_ / "plain" / "tradeoff.csv").string()).rows)
+    EXPECT_TRUE(row.at("error_hertz_a").empty()) << row.at("id");
+}
+
 // With a memory limit in the environment (as `stiction bench` sets for its runs), the
 // MUMPS backends compare MUMPS's estimate after analysis with what the process may still
 // use and refuse a factorisation that would not fit: a named failure with the estimate,

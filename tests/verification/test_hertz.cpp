@@ -1,10 +1,8 @@
 // Hertz contact in plane strain: an elastic cylinder of radius R on a rigid frictionless
 // plane (built-in scene hertz-cylinder-2d) and two identical cylinders, both deformable
-// (hertz-cylinders-2d). For a total force P per unit length (twice the quarter model's
-// contact force),
-//   a = sqrt(4 P R* / (pi E*)),   p0 = 2 P / (pi a) = sqrt(P E* / (pi R*))
-// with R* = R, E* = E / (1 - nu^2) on the plane and R* = R/2, E* = E / (2 (1 - nu^2)) for
-// the pair (Johnson, Contact Mechanics, Sec. 4.2). The computed pressure is |lambda| at
+// (hertz-cylinders-2d), and their 3D counterparts. Hertz's half-width a and peak pressure
+// p0 for the computed force (reference/hertz: formulas, Johnson's Contact Mechanics, and
+// each scene's R*, E* and symmetry factor). The computed pressure is |lambda| at
 // the slave nodes (frictionless: lambda = lambda_n n); the test reads a and p0 off the computed profile and compares them with the values
 // Hertz gives for the computed force, so the load need not be known in advance.
 #include <gtest/gtest.h>
@@ -13,6 +11,7 @@
 #include <cmath>
 
 #include "contact/contact_pair.hpp"
+#include "hertz_reference.hpp"
 #include "support/solve_scene.hpp"
 
 namespace stiction::test {
@@ -27,42 +26,32 @@ struct HertzFigures {
   double p0_fit = 0;              // p0 of that fit
 };
 
+// A Hertz scene (its case: reference/hertz) and the backend that solves it.
 struct HertzCase {
   const char* scene;
-  double R_star, E_star;
-  int dim = 2;  // 3: a sphere octant (a quarter of the contact patch)
   const char* backend = "lu-mumps";
 };
-const double kNu = 0.3;  // E = 1, R = 1 in both scenes
-const HertzCase kCylinderOnPlane{"hertz-cylinder-2d", 1.0, 1.0 / (1 - kNu * kNu)};
-const HertzCase kTwoCylinders{"hertz-cylinders-2d", 0.5, 1.0 / (2 * (1 - kNu * kNu))};
-const HertzCase kSphereOnPlane{"hertz-sphere-3d", 1.0, 1.0 / (1 - kNu * kNu), 3, "schur-amg"};
-const HertzCase kTwoSpheres{"hertz-spheres-3d", 0.5, 1.0 / (2 * (1 - kNu * kNu)), 3, "schur-amg"};
+const HertzCase kCylinderOnPlane{"hertz-cylinder-2d"};
+const HertzCase kTwoCylinders{"hertz-cylinders-2d"};
+const HertzCase kSphereOnPlane{"hertz-sphere-3d", "schur-amg"};
+const HertzCase kTwoSpheres{"hertz-spheres-3d", "schur-amg"};
 
 HertzFigures hertz_figures(const HertzCase& c, int level) {
+  const auto hertz = harness::hertz_case(c.scene);
+  EXPECT_TRUE(hertz.has_value()) << c.scene << " is not in reference/hertz/hertz-cases.csv";
+  if (!hertz) return {};
   const SolvedScene s = solve_builtin(c.scene, level, c.backend);
   EXPECT_TRUE(s.converged());
   const auto& pair = dynamic_cast<const contact::ContactPair&>(*s.scene->contacts.at(0));
-  const double R = c.R_star, E_star = c.E_star;
-  HertzFigures h;
-  if (c.dim == 2) {
-    const double P = 2 * std::abs(s.steps.back().contact.at(0).force[1]);
-    h.a_hertz = std::sqrt(4 * P * R / (M_PI * E_star));
-    h.p0_hertz = 2 * P / (M_PI * h.a_hertz);
-  } else {  // a = (3 P R / (4 E*))^(1/3), p0 = 3 P / (2 pi a^2)
-    const double P = 4 * std::abs(s.steps.back().contact.at(0).force[1]);
-    h.a_hertz = std::cbrt(3 * P * R / (4 * E_star));
-    h.p0_hertz = 3 * P / (2 * M_PI * h.a_hertz * h.a_hertz);
-  }
-  h.first_inactive = 1e9;
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  int n = 0;
-  const int d = c.dim;
+  const int d = hertz->dim;
   // Distance of a slave node from the axis of symmetry (x in 2D, hypot(x, z) in 3D).
   auto radius = [&](int i) {
     const auto& X = pair.slave().reference_position[i];
     return d == 2 ? X[0] : std::hypot(X[0], X[2]);
   };
+  HertzFigures h;
+  h.first_inactive = 1e9;
+  std::vector<std::pair<double, double>> in_contact;
   for (int i = 0; i < pair.slave().n_nodes(); ++i) {
     double p2 = 0;
     for (int k = 0; k < d; ++k) p2 += s.lambda[d * i + k] * s.lambda[d * i + k];
@@ -70,14 +59,13 @@ HertzFigures hertz_figures(const HertzCase& c, int level) {
     if (pair.state(i) == contact::NodeState::Inactive) continue;
     h.last_active = std::max(h.last_active, x);
     if (x < 1e-12) h.p0 = p;
-    sx += x * x, sy += p * p, sxx += std::pow(x, 4), sxy += x * x * p * p, ++n;
+    in_contact.emplace_back(x, p);
   }
   for (int i = 0; i < pair.slave().n_nodes(); ++i)
     if (pair.state(i) == contact::NodeState::Inactive && radius(i) > h.last_active)
       h.first_inactive = std::min(h.first_inactive, radius(i));
-  const double beta = (n * sxy - sx * sy) / (n * sxx - sx * sx), alpha = (sy - beta * sx) / n;
-  h.a_fit = std::sqrt(-alpha / beta);
-  h.p0_fit = std::sqrt(alpha);
+  const harness::HertzComparison fit = harness::compare_with_hertz(*hertz, s.steps.back().contact.at(0).force[1], in_contact);
+  h.a_hertz = fit.a_hertz, h.p0_hertz = fit.p0_hertz, h.a_fit = fit.a_fit, h.p0_fit = fit.p0_fit;
   return h;
 }
 
