@@ -1,10 +1,8 @@
 #include "tradeoff_command.hpp"
 
 #include <fmt/format.h>
-#include <toml++/toml.h>
 
 #include <filesystem>
-#include <fstream>
 #include <set>
 #include <sstream>
 
