@@ -100,18 +100,16 @@ void run_atlas(const AtlasOptions& o, const RunInfo& info) {
   std::error_code ec;
   fs::create_directories(fs::path(out) / "runs", ec);
   if (ec) throw Error(fmt::format("cannot create '{}': {}", out, ec.message()));
+  const ChildLimits limits = sweep_limits(o.time_limit_seconds, o.memory_limit_mb);
   std::set<std::string> done;
   const CsvTable previous = open_sweep_table(csv, kAtlasColumns, o.resume, info, [&] {
     std::string header = format_run_info(info, "# ");
     header += fmt::format("# base scene: {} level {}{}\n# limits per cell: {:.0f} s, {:.0f} MB resident\n", o.scene,
-                          o.level, o.quick ? " (its short version, --quick)" : "", o.time_limit_seconds,
-                          o.memory_limit_mb > 0 ? o.memory_limit_mb : 0.9 * physical_memory_mb());
+                          o.level, o.quick ? " (its short version, --quick)" : "", limits.seconds, limits.memory_mb);
     for (const auto& setting : o.base) header += "# base setting: " + setting + "\n";
     return header;
   });
   for (const auto& row : previous.rows) done.insert(cell_id(row.at("axis"), row.at("value"), row.at("solver")));
-  const ChildLimits limits{o.time_limit_seconds, o.memory_limit_mb > 0 ? o.memory_limit_mb : 0.9 * physical_memory_mb()};
-  setenv("STICTION_MEMORY_LIMIT_MB", fmt::format("{:.0f}", limits.memory_mb).c_str(), 1);
 
   size_t cells = 0, index = 0;
   for (const auto& a : axes) cells += a.values.size() * o.solvers.size();

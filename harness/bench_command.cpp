@@ -186,11 +186,11 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
   const std::string runs_csv = out + "/runs.csv";
   std::set<std::string> done;
   std::map<std::string, double> finished_seconds;  // run key -> wall time (for the time-left estimate)
+  const ChildLimits limits = sweep_limits(o.time_limit_seconds, o.memory_limit_mb);
   std::string header;  // of a new sweep (steps.csv gets it too)
   const CsvTable previous = open_sweep_table(runs_csv, kRunColumns, o.resume, info, [&] {
     header = format_run_info(info, "# ");
-    const double limit_mb = o.memory_limit_mb > 0 ? o.memory_limit_mb : 0.9 * physical_memory_mb();
-    header += fmt::format("# limits per run: {:.0f} s, {:.0f} MB resident\n", o.time_limit_seconds, limit_mb);
+    header += fmt::format("# limits per run: {:.0f} s, {:.0f} MB resident\n", limits.seconds, limits.memory_mb);
     for (const auto& s : solvers_list)
       header += fmt::format("# backend {} options: {}\n", s, solvers::compact_options(s));
     for (const auto& opt : o.petsc_options) header += "# petsc option: " + opt + "\n";
@@ -213,9 +213,6 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
     for (const auto& scene : scenes)
       for (const auto& solver : solvers_list) runs.push_back({scene, solver, level});
   const std::string exe = self_executable();
-  ChildLimits limits{o.time_limit_seconds, o.memory_limit_mb > 0 ? o.memory_limit_mb : 0.9 * physical_memory_mb()};
-  // The runs' backends read it to refuse what would not fit (lu-mumps: solvers/lu_mumps.cpp).
-  setenv("STICTION_MEMORY_LIMIT_MB", fmt::format("{:.0f}", limits.memory_mb).c_str(), 1);
   int index = 0;
   for (const Run& run : runs) {
     const size_t position = index;

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "common/error.hpp"
@@ -16,14 +15,7 @@ const std::map<std::string, std::string>& embedded_scenes();  // generated
 const std::map<std::string, std::string>& builtin_scenes() { return embedded_scenes(); }
 
 std::unique_ptr<scene::Scene> open_scene(const std::string& name, int level, const std::vector<std::string>& overrides) {
-  if (std::filesystem::is_regular_file(name)) {
-    std::ifstream in(name);
-    std::stringstream text;
-    text << in.rdbuf();
-    if (!in) throw Error(fmt::format("cannot open scene file '{}'", name));
-    return scene::build_scene(scene::apply_overrides(text.str(), overrides, name), name,
-                              std::filesystem::path(name).parent_path().string(), level);
-  }
+  if (std::filesystem::is_regular_file(name)) return scene::load_scene_file(name, level, overrides);
   auto it = builtin_scenes().find(name);
   if (it != builtin_scenes().end())
     return scene::build_scene(scene::apply_overrides(it->second, overrides, "built-in:" + name), "built-in:" + name,

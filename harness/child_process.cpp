@@ -98,4 +98,10 @@ std::string solve_status(const ChildResult& c, bool have_metrics) {
   return "error";
 }
 
+ChildLimits sweep_limits(double seconds, double memory_mb) {
+  const ChildLimits limits{seconds, memory_mb > 0 ? memory_mb : 0.9 * physical_memory_mb()};
+  setenv("STICTION_MEMORY_LIMIT_MB", fmt::format("{:.0f}", limits.memory_mb).c_str(), 1);
+  return limits;
+}
+
 }  // namespace stiction::harness

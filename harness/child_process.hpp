@@ -29,6 +29,11 @@ ChildResult run_child(const std::vector<std::string>& argv, const std::string& s
                       const std::string& stderr_path, const ChildLimits& limits,
                       const std::function<void(double)>& on_tick = {});
 
+// The limits of every run of a sweep: memory_mb 0 means 90% of the machine's memory. The
+// limit is exported as STICTION_MEMORY_LIMIT_MB, which the runs' MUMPS backends read to
+// refuse a factorisation that would not fit (solvers/mumps_lu_solver.hpp).
+ChildLimits sweep_limits(double seconds, double memory_mb);
+
 // Status of a finished `stiction solve` child, from how it ended and whether it wrote its
 // metrics: ok, newton-failed (exit 3), time-limit, memory-limit, killed (signal N), error.
 std::string solve_status(const ChildResult& c, bool have_metrics);

@@ -154,21 +154,19 @@ void run_tradeoff(const TradeoffOptions& o, const RunInfo& info) {
   std::error_code ec;
   fs::create_directories(fs::path(out) / "runs", ec);
   if (ec) throw Error(fmt::format("cannot create '{}': {}", out, ec.message()));
+  const ChildLimits limits = sweep_limits(o.time_limit_seconds, o.memory_limit_mb);
   std::set<std::string> done;
   const CsvTable previous = open_sweep_table(csv, kTradeoffColumns, o.resume, info, [&] {
     std::string header = format_run_info(info, "# ");
     header += fmt::format("# scene: {} level {} ({} unknowns)\n", scene->name, scene->level, scene->space->n_dofs());
     header += fmt::format("# reference: {} with newton rtol {:g} and its exact solves\n", o.reference_solver,
                           o.reference_newton_rtol);
-    header += fmt::format("# limits per run: {:.0f} s, {:.0f} MB resident\n", o.time_limit_seconds,
-                          o.memory_limit_mb > 0 ? o.memory_limit_mb : 0.9 * physical_memory_mb());
+    header += fmt::format("# limits per run: {:.0f} s, {:.0f} MB resident\n", limits.seconds, limits.memory_mb);
     for (const auto& s : o.solvers) header += fmt::format("# backend {} options: {}\n", s, solvers::compact_options(s));
     for (const auto& opt : o.petsc_options) header += "# petsc option: " + opt + "\n";
     return header;
   });
   for (const auto& row : previous.rows) done.insert(row.at("id"));
-  const ChildLimits limits{o.time_limit_seconds, o.memory_limit_mb > 0 ? o.memory_limit_mb : 0.9 * physical_memory_mb()};
-  setenv("STICTION_MEMORY_LIMIT_MB", fmt::format("{:.0f}", limits.memory_mb).c_str(), 1);
 
   // The reference: solved once, kept for --resume.
   const std::string reference_dir = out + "/reference";

@@ -227,7 +227,9 @@ double dist2(const Mesh& mesh, int a, int b) {
 }
 
 // The curved edges of parent cell c's children (the last `children` cells of fine): each
-// child edge's midpoint is the parent's quadratic map at the edge's middle. m holds the fine vertices at the parent's edge midpoints.
+// child edge's midpoint is the parent's quadratic map at the edge's middle (kept where it
+// leaves the child's chord: Mesh::set_edge_midpoint). m holds the fine vertices at the
+// parent's edge midpoints.
 void add_children_curves(const Mesh& mesh, int c, const int* m, int children, Mesh& fine) {
   const int d = mesh.dim, nve = n_simplex_edges(d);
   const int* v = mesh.cell(c);

@@ -513,10 +513,11 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
     if (it == settings_.max_iterations) {
       res.detail = fmt::format("{} iterations, residual {:.3e} {} tolerance {:.3e}", it, rnorm,
                                rnorm > tol ? "above" : "within", tol);
-      if (!lambda_.empty())
+      if (!lambda_.empty()) {
+        const double c_tol = std::max(settings_.atol, settings_.rtol * c_reference);
         res.detail += fmt::format(" (contact residual {:.3e} {} its tolerance {:.3e}, {} states changed last)", cnorm,
-                                  cnorm > std::max(settings_.atol, settings_.rtol * c_reference) ? "above" : "within",
-                                  std::max(settings_.atol, settings_.rtol * c_reference), last_changes);
+                                  cnorm > c_tol ? "above" : "within", c_tol, last_changes);
+      }
       return finish(NewtonReason::DivergedMaxIterations);
     }
 

@@ -16,6 +16,7 @@
 #include "mesh/grooved_block.hpp"
 #include "mesh/structured_tube.hpp"
 #include "nonlinear/load_schedule.hpp"
+#include "scene/overrides.hpp"
 
 namespace stiction::scene {
 
@@ -723,12 +724,13 @@ std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& o
   return scene;
 }
 
-std::unique_ptr<Scene> load_scene_file(const std::string& path, int level) {
+std::unique_ptr<Scene> load_scene_file(const std::string& path, int level, const std::vector<std::string>& overrides) {
   std::ifstream in(path);
   if (!in) throw Error(fmt::format("cannot open scene file '{}'", path));
   std::stringstream ss;
   ss << in.rdbuf();
-  return build_scene(ss.str(), path, std::filesystem::path(path).parent_path().string(), level);
+  return build_scene(apply_overrides(ss.str(), overrides, path), path, std::filesystem::path(path).parent_path().string(),
+                     level);
 }
 
 }  // namespace stiction::scene

@@ -58,7 +58,8 @@ const TableSpec& scene_schema();
 // `base_dir` resolves relative mesh paths; `level` >= 0 overrides the scene's mesh level.
 std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& origin, const std::string& base_dir,
                                    int level = -1);
-// Reads a scene file from disk.
-std::unique_ptr<Scene> load_scene_file(const std::string& path, int level = -1);
+// Reads a scene file from disk; overrides: KEY=VALUE settings of its keys (overrides.hpp).
+std::unique_ptr<Scene> load_scene_file(const std::string& path, int level = -1,
+                                       const std::vector<std::string>& overrides = {});
 
 }  // namespace stiction::scene
