@@ -11,7 +11,7 @@
 #include "common/error.hpp"
 #include "csv_table.hpp"
 #include "fem/error_norms.hpp"
-#include "hertz_reference.hpp"
+#include "analytic_reference.hpp"
 
 namespace stiction::harness {
 
@@ -21,6 +21,12 @@ struct FinalState {
   std::vector<double> u;
   // Every slave node in contact at the last step: its mesh vertex and multiplier magnitude.
   std::vector<std::pair<int, double>> in_contact;
+  struct SlaveNode {
+    int vertex = 0;
+    std::string state;
+    double lambda_n = 0;
+  };
+  std::vector<SlaveNode> slave_nodes;          // every slave node at the last step
   std::vector<double> contact_force;           // every pair's F3 components, in column order
   double peak_pressure = 0;                    // largest lambda_n at the last step
   std::map<std::string, std::string> states;   // "pair/node" -> state at the last step
@@ -55,6 +61,7 @@ FinalState read_final_state(const scene::Scene& scene, const std::string& dir) {
     if (row.at("step") != final_step) continue;
     f.peak_pressure = std::max(f.peak_pressure, number(row, "lambda_n"));
     f.states[row.at("pair") + "/" + row.at("node")] = row.at("state");
+    f.slave_nodes.push_back({static_cast<int>(number(row, "vertex")), row.at("state"), number(row, "lambda_n")});
     if (row.at("state") != "inactive") {
       double p2 = 0;
       for (const char* k : {"lambda_x", "lambda_y", "lambda_z"})
@@ -122,16 +129,40 @@ LevelDifference compare_levels(const scene::Scene& coarse, const std::string& co
 
 std::optional<AnalyticAccuracy> analytic_accuracy(const scene::Scene& scene, const std::string& run_dir) {
   const auto hertz = hertz_case(scene.name);
-  if (!hertz) return std::nullopt;
+  const auto mindlin = mindlin_case(scene.name);
+  const auto patch = patch_case(scene.name);
+  if (!hertz && !mindlin && !patch) return std::nullopt;
   const FinalState f = read_final_state(scene, run_dir);
-  std::vector<std::pair<double, double>> profile;
-  for (const auto& [vertex, p] : f.in_contact) {
-    const double* X = scene.mesh.vertex(vertex);
-    profile.emplace_back(hertz->dim == 2 ? X[0] : std::hypot(X[0], X[2]), p);
+  AnalyticAccuracy a;
+  if (hertz) {
+    std::vector<std::pair<double, double>> profile;
+    for (const auto& [vertex, p] : f.in_contact) {
+      const double* X = scene.mesh.vertex(vertex);
+      profile.emplace_back(hertz->dim == 2 ? X[0] : std::hypot(X[0], X[2]), p);
+    }
+    if (profile.size() >= 2 && f.contact_force.size() >= 2) {
+      const HertzComparison h = compare_with_hertz(*hertz, f.contact_force[1], profile);
+      a.hertz_a = h.a_error();
+      a.hertz_p0 = h.p0_error();
+    }
   }
-  if (profile.size() < 2 || f.contact_force.size() < 2) return std::nullopt;
-  const HertzComparison h = compare_with_hertz(*hertz, f.contact_force[1], profile);
-  return AnalyticAccuracy{h.a_error(), h.p0_error()};
+  if (mindlin && f.contact_force.size() >= 2) {
+    std::vector<double> stick, slip;  // |x| of the reference positions, the contact point at x = 0
+    for (const auto& node : f.slave_nodes) {
+      const double x = std::abs(scene.mesh.vertex(node.vertex)[0]);
+      if (node.state == "stick") stick.push_back(x);
+      if (node.state == "slip") slip.push_back(x);
+    }
+    if (!stick.empty() && !slip.empty())
+      a.stick_zone = compare_with_mindlin(*mindlin, f.contact_force[1], f.contact_force[0], stick, slip)
+                         .stick_zone_error();
+  }
+  if (patch) {
+    std::vector<double> normal;
+    for (const auto& node : f.slave_nodes) normal.push_back(node.lambda_n);
+    if (!normal.empty()) a.patch_pressure = patch_pressure_error(*patch, normal);
+  }
+  return a;
 }
 
 }  // namespace stiction::harness

@@ -32,11 +32,15 @@ struct LevelDifference {
 LevelDifference compare_levels(const scene::Scene& coarse, const std::string& coarse_dir, const scene::Scene& fine,
                                const std::string& fine_dir);
 
-// Against the analytic solution, where the scene models one (reference/hertz): the
-// relative errors of the contact half-width (radius) and peak pressure fitted to the run's
-// final pressure profile, against Hertz's for its computed force.
+// Against the analytic solution, where the scene models one (harness/analytic_reference.hpp),
+// at the last load step; a figure is unset when the final state has too few contact nodes
+// to measure it:
+//   Hertz: the relative errors of the contact half-width (radius) and peak pressure fitted
+//     to the pressure profile, against Hertz's for the computed force;
+//   Cattaneo-Mindlin: the distance of the computed stick-zone edge from Mindlin's, over a;
+//   contact patch test: the largest relative deviation of a slave node's pressure.
 struct AnalyticAccuracy {
-  double hertz_a = 0, hertz_p0 = 0;
+  std::optional<double> hertz_a, hertz_p0, stick_zone, patch_pressure;
 };
 std::optional<AnalyticAccuracy> analytic_accuracy(const scene::Scene& scene, const std::string& run_dir);
 

@@ -88,13 +88,15 @@ std::vector<Setting> settings_of(const TradeoffOptions& o) {
 }
 
 std::string number_or_blank(double x, bool set) { return set ? fmt::format("{:.3e}", x) : ""; }
+std::string number_or_blank(const std::optional<double>& x) { return number_or_blank(x.value_or(0), x.has_value()); }
 
 // One row of tradeoff.csv (kTradeoffColumns); accuracy null: not measured.
 std::string row_of(const scene::Scene& scene, const std::string& id, const Setting& s, const SolveRun& run,
                    const SolutionAccuracy* accuracy, const std::optional<AnalyticAccuracy>& analytic) {
   const bool contact = accuracy && accuracy->contact;
   return fmt::format(
-      "{},{},{},{},{},{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.3f},{:.3f},{:.1f},{},{},{},{},{},{},{},{}", scene.name,
+      "{},{},{},{},{},{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.3f},{:.3f},{:.1f},{},{},{},{},{},{},{},{},{},{}",
+      scene.name,
       scene.level, id, s.solver, s.forcing, s.newton_rtol >= 0 ? fmt::format("{:g}", s.newton_rtol) : "",
       s.krylov_rtol >= 0 ? fmt::format("{:g}", s.krylov_rtol) : "", s.knob, s.is_default() ? 1 : 0, run.status,
       csv_field(run.reason.empty() ? run.status : run.reason), run.newton, run.solves, run.krylov, run.wall_seconds,
@@ -102,8 +104,10 @@ std::string row_of(const scene::Scene& scene, const std::string& id, const Setti
       number_or_blank(accuracy ? accuracy->displacement_h1 : 0, accuracy),
       number_or_blank(contact ? accuracy->contact_force : 0, contact),
       number_or_blank(contact ? accuracy->peak_pressure : 0, contact), contact ? std::to_string(accuracy->state_changes) : "",
-      number_or_blank(analytic ? analytic->hertz_a : 0, analytic.has_value()),
-      number_or_blank(analytic ? analytic->hertz_p0 : 0, analytic.has_value()), csv_field(run.detail));
+      number_or_blank(analytic ? analytic->hertz_a : std::nullopt),
+      number_or_blank(analytic ? analytic->hertz_p0 : std::nullopt),
+      number_or_blank(analytic ? analytic->stick_zone : std::nullopt),
+      number_or_blank(analytic ? analytic->patch_pressure : std::nullopt), csv_field(run.detail));
 }
 
 // Solves the reference at `level` into dir (a row `id` of tradeoff.csv unless done has it);

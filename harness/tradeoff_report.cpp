@@ -15,7 +15,7 @@ namespace stiction::harness {
 const char* const kTradeoffColumns =
     "scene,level,id,solver,forcing,newton_rtol,krylov_rtol,knob,default,status,reason,newton_iterations,linear_solves,"
     "krylov_iterations,wall_seconds,linear_seconds,peak_rss_mb,error_u_l2,error_u_h1,error_contact_force,"
-    "error_peak_pressure,state_changes,error_hertz_a,error_hertz_p0,detail";
+    "error_peak_pressure,state_changes,error_hertz_a,error_hertz_p0,error_stick_zone,error_patch_pressure,detail";
 
 namespace {
 
@@ -33,7 +33,11 @@ std::string command_of(const Row& r) {
   return c;
 }
 
-std::string cell(const Row& r, const std::string& key) { return r.at(key).empty() ? "—" : r.at(key); }
+// A missing column (a table written before the column existed) shows as unmeasured.
+std::string cell(const Row& r, const std::string& key) {
+  const auto it = r.find(key);
+  return it == r.end() || it->second.empty() ? "—" : it->second;
+}
 
 // The measured runs no other measured run beats on both wall time and displacement error
 // (H1), fastest first.
@@ -102,19 +106,24 @@ void write_tradeoff_report(const std::string& out_dir) {
         "Accuracy is each run's final state against the reference's (first row), on the same mesh: the "
         "displacement error in L2 and in the H1 seminorm, the contact force (every pair's multiplier integral), "
         "the largest contact pressure, each relative to the reference, and the slave nodes whose contact state "
-        "differs; on a Hertz scene (reference/hertz) also the fitted contact half-width and peak pressure against "
-        "Hertz's, the reference's own included. Cost is the run's wall time (its own process), the time in linear solves (set-up and solve) "
+        "differs. Where the scene models an analytic solution, the final state against it, the reference's own "
+        "included: on a Hertz scene (reference/hertz) the fitted contact half-width and peak pressure against "
+        "Hertz's; on Cattaneo-Mindlin (reference/cattaneo-mindlin) the stick-zone edge's distance from "
+        "Mindlin's over the contact half-width; on the patch test (reference/contact-patch) the largest "
+        "deviation of a node's pressure from the uniform one. Cost is the run's wall time (its own process), the time in linear solves (set-up and solve) "
         "and its peak resident memory.\n\n## Runs\n\n"
         "| setting | status | Newton | Krylov | wall s | linear s | peak MB | error u L2 | error u H1 | contact "
-        "force | peak pressure | states changed | Hertz a | Hertz p0 |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "force | peak pressure | states changed | Hertz a | Hertz p0 | stick zone | patch pressure |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   std::vector<const Row*> runs;
   for (const auto& r : table.rows) {
-    md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", r.at("id"),
+    md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", r.at("id"),
                       r.at("status") == "ok" ? "ok" : r.at("status") + " (" + r.at("reason") + ")",
                       r.at("newton_iterations"), r.at("krylov_iterations"), r.at("wall_seconds"),
                       r.at("linear_seconds"), r.at("peak_rss_mb"), cell(r, "error_u_l2"), cell(r, "error_u_h1"),
                       cell(r, "error_contact_force"), cell(r, "error_peak_pressure"), cell(r, "state_changes"),
-                      cell(r, "error_hertz_a"), cell(r, "error_hertz_p0"));
+                      cell(r, "error_hertz_a"), cell(r, "error_hertz_p0"), cell(r, "error_stick_zone"),
+                      cell(r, "error_patch_pressure"));
     if (measured(r)) runs.push_back(&r);
   }
   const CsvTable levels = read_csv(out_dir + "/discretisation.csv");

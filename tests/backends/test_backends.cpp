@@ -212,7 +212,7 @@ TEST_P(EveryBackend, SameSolutionAsLuMumps) {
 INSTANTIATE_TEST_SUITE_P(Backends, EveryBackend,
                          ::testing::Values("cantilever-2d", "small-block", "hertz-cylinder-2d", "hertz-cylinders-2d",
                                            "contact-patch-2d", "self-contact-2d", "sliding-block-2d",
-                                           "hertz-sphere-3d", "hertz-spheres-3d", "ironing-2d",
+                                           "cattaneo-mindlin-2d", "hertz-sphere-3d", "hertz-spheres-3d", "ironing-2d",
                                            "ironing-2d-frictionless", "crossed-tubes-3d", "block-strips"),
                          [](const auto& info) {
                            std::string n = info.param;

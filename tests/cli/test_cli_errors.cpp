@@ -722,30 +722,59 @@ TEST_F(StictionCli, AtlasNamesEveryCellsEndAndReportsAHang) {
   EXPECT_FALSE(fs::exists(dir_ / "bad" / "atlas.csv")) << "refused before any cell ran";
 }
 
-// On a scene that models a Hertz case (reference/hertz) the sweep also compares each run
-// with Hertz: hertz-cylinder-2d level 0 fits the half-width and the peak pressure within
-// 0.3% (Hertz2D.CylinderOnRigidPlaneConvergesToHertz: 0.18% and 0.13%), the reference's
-// own figures included; on other scenes those columns stay empty.
-TEST_F(StictionCli, TradeoffComparesHertzScenesWithHertz) {
-  const CliRun sweep = CliRun::of({"tradeoff", "hertz-cylinder-2d", "--solvers", "schur-amg", "--newton-rtols", "1e-8",
-                                   "--krylov-rtols", "1e-6", "--out", "hertz"},
+// On a scene that models an analytic solution the sweep also compares each run with it,
+// the reference's own figures included; on other scenes those columns stay empty.
+// hertz-cylinder-2d level 0 fits the half-width and the peak pressure within 0.3%
+// (Hertz2D.CylinderOnRigidPlaneConvergesToHertz: 0.18% and 0.13%). The patch test carries
+// its uniform pressure to round-off with exact solves (ContactPatch.*: 1e-8) and further
+// from it with a loose Krylov tolerance. cattaneo-mindlin-2d level 0 places the stick-zone
+// edge within 2% of the contact half-width of Mindlin's (Friction.CattaneoMindlin*'s bound;
+// measured 0.7%).
+TEST_F(StictionCli, TradeoffComparesScenesWithTheirAnalyticSolutions) {
+  using stiction::harness::number;
+  const auto sweep = [&](const std::string& scene, const std::string& krylov_rtols) {
+    const CliRun run = CliRun::of({"tradeoff", scene, "--solvers", "schur-amg", "--newton-rtols", "1e-8",
+                                   "--krylov-rtols", krylov_rtols, "--out", scene},
                                   dir_);
-  ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
-  const auto rows = stiction::harness::read_csv((dir_ / "hertz" / "tradeoff.csv").string()).rows;
-  ASSERT_EQ(rows.size(), 3u);
-  for (const auto& row : rows) {
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    return stiction::harness::read_csv((dir_ / scene / "tradeoff.csv").string()).rows;
+  };
+  const auto hertz = sweep("hertz-cylinder-2d", "1e-6");
+  ASSERT_EQ(hertz.size(), 3u);
+  for (const auto& row : hertz) {
     SCOPED_TRACE(row.at("id"));
     ASSERT_FALSE(row.at("error_hertz_a").empty());
-    EXPECT_GT(stiction::harness::number(row, "error_hertz_a"), 0);
-    EXPECT_LT(stiction::harness::number(row, "error_hertz_a"), 3e-3);
-    EXPECT_LT(stiction::harness::number(row, "error_hertz_p0"), 3e-3);
+    EXPECT_GT(number(row, "error_hertz_a"), 0);
+    EXPECT_LT(number(row, "error_hertz_a"), 3e-3);
+    EXPECT_LT(number(row, "error_hertz_p0"), 3e-3);
+    EXPECT_TRUE(row.at("error_stick_zone").empty());
+    EXPECT_TRUE(row.at("error_patch_pressure").empty());
   }
+
+  const auto patch = sweep("contact-patch-2d", "1e-1,1e-10");  // reference, default, loose, tight
+  ASSERT_EQ(patch.size(), 4u);
+  for (const auto& row : patch) ASSERT_FALSE(row.at("error_patch_pressure").empty()) << row.at("id");
+  EXPECT_LT(number(patch[0], "error_patch_pressure"), 1e-8);
+  EXPECT_LT(number(patch[3], "error_patch_pressure"), 1e-8);
+  EXPECT_GT(number(patch[2], "error_patch_pressure"), 10 * number(patch[3], "error_patch_pressure"));
+  EXPECT_TRUE(patch[0].at("error_hertz_a").empty());
+
+  const auto mindlin = sweep("cattaneo-mindlin-2d", "1e-6");
+  ASSERT_EQ(mindlin.size(), 3u);
+  for (const auto& row : mindlin) {
+    SCOPED_TRACE(row.at("id"));
+    ASSERT_FALSE(row.at("error_stick_zone").empty());
+    EXPECT_GT(number(row, "error_stick_zone"), 0);
+    EXPECT_LT(number(row, "error_stick_zone"), 0.02);
+  }
+
   const CliRun plain = CliRun::of({"tradeoff", "cantilever-2d", "--solvers", "lu-mumps", "--newton-rtols", "1e-8",
                                    "--out", "plain"},
                                   dir_);
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
   for (const auto& row : stiction::harness::read_csv((dir_ / "plain" / "tradeoff.csv").string()).rows)
-    EXPECT_TRUE(row.at("error_hertz_a").empty()) << row.at("id");
+    for (const char* column : {"error_hertz_a", "error_stick_zone", "error_patch_pressure"})
+      EXPECT_TRUE(row.at(column).empty()) << row.at("id") << " " << column;
 }
 
 // With a memory limit in the environment (as `stiction bench` sets for its runs), the

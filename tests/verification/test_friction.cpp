@@ -73,90 +73,20 @@ TEST(Friction, FrictionTableChangesMuBetweenPhases) {
                Error);
 }
 
-// Cattaneo-Mindlin in plane strain: two identical elastic cylinders (R = 1, so R* = 1/2 and
-// E* = E / (2 (1 - nu^2)); identical bodies, so normal and tangential tractions do not
-// couple) are pressed together (step 1: every contact node sticks) and then sheared by
-// moving the lower base sideways in four steps, Q < mu P. Mindlin's stick zone is
+// Cattaneo-Mindlin in plane strain (built-in scene cattaneo-mindlin-2d): two identical
+// elastic cylinders (R = 1, so R* = 1/2 and E* = E / (2 (1 - nu^2)); identical bodies, so
+// normal and tangential tractions do not couple) are pressed together (step 1: every
+// contact node sticks) and then sheared by moving the lower base sideways in four steps,
+// Q < mu P. Mindlin's stick zone is
 // |x| <= c with c = a sqrt(1 - Q / (mu P)), a = sqrt(4 P R* / (pi E*)) (Johnson, Contact
 // Mechanics, 7.2). Per step, c must lie between the outermost sticking node and the
 // innermost slipping one, give or take 2% of a. Measured at level 1 (node spacing 0.002 to
 // 0.004 there, a = 0.078): Q / mu P = 0.17, 0.34, 0.51, 0.67 give c = 0.0711, 0.0634,
 // 0.0547, 0.0448 against brackets [0.0701, 0.0743], [0.0622, 0.0661], [0.0511, 0.0547],
 // [0.0409, 0.0442]: the last two lie 0.1% and 0.8% of a outside.
-const char* kCattaneoMindlin = R"(
-[scene]
-name = "cattaneo-mindlin-2d"
-description = "two identical cylinders pressed together, then sheared below mu P"
-
-[[material]]
-name = "steel-like"
-model = "linear"
-E = 1.0
-nu = 0.3
-
-[[body]]
-name = "upper"
-material = "steel-like"
-[body.mesh]
-generator = "polygon"
-h = 0.1
-points = [-1.0, 1.0, 0.0, 0.0, 1.0, 1.0]
-sides = ["surface", "surface", "top"]
-arc_sides = [0, 1]
-arc_centers = [0.0, 1.0, 0.0, 1.0]
-point_sizes = [0.1, 0.004, 0.1]
-
-[[body]]
-name = "lower"
-material = "steel-like"
-[body.mesh]
-generator = "polygon"
-h = 0.1
-points = [-1.0, -1.0, 1.0, -1.0, 0.0, 0.0]
-sides = ["base", "surface", "surface"]
-arc_sides = [1, 2]
-arc_centers = [0.0, -1.0, 0.0, -1.0]
-point_sizes = [0.1, 0.1, 0.004]
-
-[[dirichlet]]
-body = "upper"
-boundary = "top"
-components = ["x", "y"]
-value = [0.0, 0.0]
-
-[[dirichlet]]
-body = "lower"
-boundary = "base"
-components = ["y"]
-value = [0.02]
-schedule = [1.0, 1.0, 1.0, 1.0, 1.0]
-
-[[dirichlet]]
-body = "lower"
-boundary = "base"
-components = ["x"]
-value = [0.007]
-schedule = [0.0, 0.25, 0.5, 0.75, 1.0]
-
-[[contact]]
-name = "interface"
-body = "upper"
-boundary = "surface"
-master = "surface"
-master_body = "lower"
-master_boundary = "surface"
-friction = 0.3
-
-[load]
-steps = 5
-
-[output]
-vtu = false
-)";
-
 TEST(Friction, CattaneoMindlinStickZoneOfTwoCylinders) {
   const int level = 1;
-  auto sc = scene::build_scene(kCattaneoMindlin, "cattaneo-mindlin-2d", ".", level);
+  auto sc = harness::open_scene("cattaneo-mindlin-2d", level);
   auto solver = solvers::create_solver("lu-mumps", PETSC_COMM_WORLD);
   nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, sc->problem, sc->newton, *solver);
   const auto& pair = dynamic_cast<const contact::ContactPair&>(*sc->contacts.at(0));

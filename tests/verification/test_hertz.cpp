@@ -11,7 +11,7 @@
 #include <cmath>
 
 #include "contact/contact_pair.hpp"
-#include "hertz_reference.hpp"
+#include "analytic_reference.hpp"
 #include "support/solve_scene.hpp"
 
 namespace stiction::test {
