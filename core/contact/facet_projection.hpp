@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "fem/basis.hpp"
@@ -326,9 +327,15 @@ Projection<D> intersect(const FacetEvaluator<D>& ev, const SurfaceFacet& m, cons
     p.y = ev.at(m, z.template head<P>(), u);
     A << -p.y.dx, nu;
     const Unknowns R = x + z[P] * nu - p.y.x;
-    Eigen::FullPivLU<Eigen::Matrix<double, D, D>> lu(A);
-    if (!lu.isInvertible()) return p;  // the line runs along the facet
-    const Unknowns step = lu.solve(R);
+    // Closed-form inverse (cofactors; a pivoting LU cost more than the rest of the
+    // iteration). Singular relative to Hadamard's bound: the line runs along the facet.
+    Eigen::Matrix<double, D, D> A_inverse;
+    double det = 0;
+    bool invertible = false;
+    A.computeInverseAndDetWithCheck(A_inverse, det, invertible,
+                                    D * std::numeric_limits<double>::epsilon() * A.colwise().norm().prod());
+    if (!invertible) return p;
+    const Unknowns step = A_inverse * R;
     z -= step;
     if (!detail::inside<P>(typename G::Param(z.template head<P>()), 0.5)) return p;
     if (step.template head<P>().norm() < 1e-10 && ++polish > 2) {
