@@ -51,6 +51,7 @@ ContactPair::ContactPair(std::string name, const fem::FieldSpace& space, int sla
 // then down to 1/64 of a step, DIVERGED_MAX_ITERATIONS at t = 1.057).
 void ContactPair::begin_increment(double t_start, const std::vector<double>& u) {
   u_previous_ = u;
+  last_evaluated_.valid = false;  // the slip increments S_i are relative to u_previous_
   t_previous_ = t_start;
   for (int i = 0; i < slave_.n_nodes(); ++i) r_t_[i] = initial_r_t(i);
   std::fill(last_dlambda_t_.begin(), last_dlambda_t_.end(), Vec3::Zero());
@@ -83,8 +84,37 @@ void ContactPair::restore_state(const std::vector<double>& saved) {
 
 void ContactPair::evaluate(double t, const std::vector<double>& u, const double* lambda, std::vector<double>& r_u,
                            double* r_c, nonlinear::SparseEntries* jacobian, PetscInt offset) const {
-  std::vector<NodeKinematics> nodes;
-  compute_kinematics(t, u, lambda, &r_u, jacobian, offset, jacobian != nullptr, nodes);
+  if (jacobian) {
+    std::vector<NodeKinematics> nodes;
+    compute_kinematics(t, u, lambda, &r_u, jacobian, offset, true, nodes);
+    write_rows(t, nodes, lambda, r_c, jacobian, offset);
+    return;
+  }
+  last_evaluated_.valid = false;
+  compute_kinematics(t, u, lambda, &r_u, nullptr, offset, false, last_evaluated_.nodes);
+  last_evaluated_.t = t;
+  last_evaluated_.u = u;
+  last_evaluated_.valid = true;
+  write_rows(t, last_evaluated_.nodes, lambda, r_c, nullptr, offset);
+}
+
+void ContactPair::evaluate_rows(double t, const std::vector<double>& u, const double* lambda, double* r_c) const {
+  write_rows(t, kinematics_at(t, u), lambda, r_c, nullptr, 0);
+}
+
+const std::vector<NodeKinematics>& ContactPair::kinematics_at(double t, const std::vector<double>& u) const {
+  if (!(last_evaluated_.valid && last_evaluated_.t == t && last_evaluated_.u == u)) {
+    last_evaluated_.valid = false;
+    compute_kinematics(t, u, nullptr, nullptr, nullptr, 0, false, last_evaluated_.nodes);
+    last_evaluated_.t = t;
+    last_evaluated_.u = u;
+    last_evaluated_.valid = true;
+  }
+  return last_evaluated_.nodes;
+}
+
+void ContactPair::write_rows(double t, const std::vector<NodeKinematics>& nodes, const double* lambda, double* r_c,
+                             nonlinear::SparseEntries* jacobian, PetscInt offset) const {
   const int d = dim_;
   for (int i = 0; i < slave_.n_nodes(); ++i) {
     const NodeKinematics& k = nodes[i];
@@ -120,8 +150,7 @@ void ContactPair::evaluate(double t, const std::vector<double>& u, const double*
 }
 
 int ContactPair::update_states(double t, const std::vector<double>& u, const double* lambda, const double* dlambda) {
-  std::vector<NodeKinematics> nodes;
-  compute_kinematics(t, u, nullptr, nullptr, nullptr, 0, false, nodes);
+  const std::vector<NodeKinematics>& nodes = kinematics_at(t, u);
   const double entry = entry_depth(nodes);
   const int d = dim_;
   int changes = 0;
@@ -202,8 +231,7 @@ double ContactPair::entry_depth(const std::vector<NodeKinematics>& nodes) const 
 }
 
 std::vector<double> ContactPair::mean_normal_gaps(double t, const std::vector<double>& u) const {
-  std::vector<NodeKinematics> nodes;
-  compute_kinematics(t, u, nullptr, nullptr, nullptr, 0, false, nodes);
+  const std::vector<NodeKinematics>& nodes = kinematics_at(t, u);
   std::vector<double> gaps(nodes.size());
   for (size_t i = 0; i < nodes.size(); ++i)
     gaps[i] = nodes[i].admissible ? nodes[i].n.dot(nodes[i].G) / slave_.lumped_mass[i]
@@ -213,8 +241,7 @@ std::vector<double> ContactPair::mean_normal_gaps(double t, const std::vector<do
 
 std::vector<nonlinear::MultiplierNode> ContactPair::nodes(double t, const std::vector<double>& u,
                                                          const double* lambda) const {
-  std::vector<NodeKinematics> kin;
-  compute_kinematics(t, u, nullptr, nullptr, nullptr, 0, false, kin);
+  const std::vector<NodeKinematics>& kin = kinematics_at(t, u);
   std::vector<nonlinear::MultiplierNode> out(slave_.n_nodes());
   for (int i = 0; i < slave_.n_nodes(); ++i) {
     nonlinear::MultiplierNode& node = out[i];

@@ -91,6 +91,7 @@ public:
   void begin_increment(double t_start, const std::vector<double>& u) override;
   void evaluate(double t, const std::vector<double>& u, const double* lambda, std::vector<double>& r_u, double* r_c,
                 nonlinear::SparseEntries* jacobian, PetscInt offset) const override;
+  void evaluate_rows(double t, const std::vector<double>& u, const double* lambda, double* r_c) const override;
   int update_states(double t, const std::vector<double>& u, const double* lambda, const double* dlambda) override;
   void states_held(const double* lambda, const double* dlambda) override;
   std::vector<char> states() const override;
@@ -135,6 +136,14 @@ private:
   // The mean penetration depth an inactive node must exceed to enter contact at this update:
   // a fraction of the deepest penetrated inactive node's.
   double entry_depth(const std::vector<NodeKinematics>& nodes) const;
+  // The kinematics at (t, u) without derivatives, from the last evaluation when it was made
+  // at the same point: a Newton iteration evaluates its iterate (the step's residual), then
+  // updates the states and writes the rows of the new states there, and each evaluation of
+  // a deformable master searches it for every slave quadrature point.
+  const std::vector<NodeKinematics>& kinematics_at(double t, const std::vector<double>& u) const;
+  // Writes r_c (and, with jacobian, C_u and C_l) from the nodes' kinematics.
+  void write_rows(double t, const std::vector<NodeKinematics>& nodes, const double* lambda, double* r_c,
+                  nonlinear::SparseEntries* jacobian, PetscInt offset) const;
   // Pi X Pi of a slave-surface matrix X given as (row, column, value) entries.
   void add_projected(const std::vector<int>& rows, const std::vector<int>& cols, const std::vector<double>& values,
                      nonlinear::SparseEntries& out, PetscInt offset) const;
@@ -149,6 +158,15 @@ private:
   mutable std::vector<Vec3> normals_;
   // d c_i / d S_i of every slipping node's row at that iterate (zero elsewhere).
   mutable std::vector<Mat3> slip_rows_;
+  // The kinematics of the last evaluation without derivatives and the point (t, u) it was
+  // made at (a copy of u: one displacement vector per pair).
+  struct EvaluatedPoint {
+    bool valid = false;
+    double t = 0;
+    std::vector<double> u;
+    std::vector<NodeKinematics> nodes;
+  };
+  mutable EvaluatedPoint last_evaluated_;
   // The last update changed no state (or held them) and moved the multipliers by at most
   // settle_tolerance relative to them.
   bool settled_ = false;

@@ -63,6 +63,9 @@ public:
   // `offset + k` of the augmented system; lambda points at this constraint's multipliers.
   virtual void evaluate(double t, const std::vector<double>& u, const double* lambda, std::vector<double>& r_u,
                         double* r_c, SparseEntries* jacobian, PetscInt offset) const = 0;
+  // The constraint rows r_c alone, for the current states: after a state update at an
+  // iterate already evaluated, the new states change the rows, not the forces on r_u.
+  virtual void evaluate_rows(double t, const std::vector<double>& u, const double* lambda, double* r_c) const = 0;
   // After a Newton update: applies the state machine (transitions A-E of Sec. 4.5) at the
   // new iterate; returns how many states changed.
   virtual int update_states(double t, const std::vector<double>& u, const double* lambda, const double* dlambda) = 0;

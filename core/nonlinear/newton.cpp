@@ -126,8 +126,8 @@ MatNullSpace rigid_body_modes(MPI_Comm comm, const fem::FieldSpace& space, int n
   return nsp;
 }
 
-// The residual of the augmented system: u rows (elastic part kept apart, so a change of
-// contact states re-evaluates only the constraint part) and constraint rows.
+// The residual of the augmented system: u rows (the elastic part kept apart: the contact
+// forces are r.u - r.elastic) and constraint rows.
 struct QuasiStaticSolver::Residuals {
   std::vector<double> elastic, u, c;
 };
@@ -212,10 +212,8 @@ fem::InternalForceStatus QuasiStaticSolver::residual(double t, const std::vector
 }
 
 fem::InternalForceStatus QuasiStaticSolver::evaluate(double t, const std::vector<double>& u,
-                                                     const std::vector<double>& lambda, Residuals& r,
-                                                     bool elastic) const {
-  fem::InternalForceStatus status;
-  if (elastic) status = residual(t, u, r.elastic);
+                                                     const std::vector<double>& lambda, Residuals& r) const {
+  const fem::InternalForceStatus status = residual(t, u, r.elastic);
   r.u = r.elastic;
   r.c.assign(lambda.size(), 0.0);
   for (size_t k = 0; k < problem_.constraints.size(); ++k)
@@ -313,6 +311,13 @@ int QuasiStaticSolver::update_constraint_states(double t, const std::vector<doub
   return changes;
 }
 
+void QuasiStaticSolver::evaluate_constraint_rows(double t, Residuals& r) const {
+  r.c.assign(lambda_.size(), 0.0);
+  for (size_t k = 0; k < problem_.constraints.size(); ++k)
+    problem_.constraints[k]->evaluate_rows(t, u_, lambda_.data() + constraint_offset_[k],
+                                           r.c.data() + constraint_offset_[k]);
+}
+
 void QuasiStaticSolver::report_state_changes(int step, int iteration, double t, const std::vector<char>& before) const {
   size_t first = 0;
   for (size_t k = 0; k < problem_.constraints.size(); ++k) {
@@ -385,7 +390,7 @@ QuasiStaticSolver::TrialStep QuasiStaticSolver::take_step(double t_target, const
     if (t.alpha == 1)
       for (size_t k = 0; k < constrained_.size(); ++k) trial[constrained_[k]] = target_[k];  // exact, free of round-off
     const auto t0 = std::chrono::steady_clock::now();
-    const auto st = evaluate(t_target, trial, trial_lambda, rt, true);
+    const auto st = evaluate(t_target, trial, trial_lambda, rt);
     t.assembly_seconds += seconds_since(t0);
     const double norm = std::hypot(free_norm(rt.u), l2_norm(rt.c));
     t.folded_cell = st.folded_cell;
@@ -438,7 +443,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
 
   Residuals r, rt;
   auto t0 = std::chrono::steady_clock::now();
-  const auto st0 = evaluate(t, u_, lambda_, r, true);
+  const auto st0 = evaluate(t, u_, lambda_, r);
   double asm_seconds = seconds_since(t0);
   if (st0.inverted_cell >= 0)
     throw Error(fmt::format("load step {}: {} is inverted at the start of the step", step, describe_cell(st0.inverted_cell)),
@@ -484,7 +489,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
     const std::vector<char> states = constraint_states();
     if (std::all_of(states.begin(), states.end(), [](char c) { return c == MultiplierConstraint::kFreeState; })) {
       last_changes = update_constraint_states(t, std::vector<double>(lambda_.size(), 0.0));
-      if (last_changes > 0) evaluate(t, u_, lambda_, r, false);
+      if (last_changes > 0) evaluate_constraint_rows(t, r);
       if (last_changes > 0 && state_observer_) report_state_changes(step, 0, t, states);
     }
     cnorm = c_reference = l2_norm(r.c);
@@ -581,7 +586,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
         last_changes = update_constraint_states(t, dl);
         if (last_changes > 0) {
           if (state_observer_) report_state_changes(step, it + 1, t, before);
-          evaluate(t, u_, lambda_, r, false);  // the rows of the new states
+          evaluate_constraint_rows(t, r);
           verdict = monitor.after_update(before, constraint_states(), r_free + r_c, free_norm(r.u) + l2_norm(r.c));
         }
       }

@@ -169,10 +169,13 @@ private:
   struct Residuals;
   void build_constraints();
   void assemble_system(const Residuals& r, bool lift);
-  // Elastic part (when `elastic` is set) and constraint part of the residual at (u, lambda).
+  // Elastic part and constraint part of the residual at (u, lambda).
   fem::InternalForceStatus evaluate(double t, const std::vector<double>& u, const std::vector<double>& lambda,
-                                    Residuals& r, bool elastic) const;
+                                    Residuals& r) const;
   int update_constraint_states(double t, const std::vector<double>& dlambda);
+  // The constraint rows r.c at (u_, lambda_) for the states just updated there; r.u, the
+  // forces on the displacement equations, does not depend on the states.
+  void evaluate_constraint_rows(double t, Residuals& r) const;
   static bool retry_allowed(const StepResult& failed, bool linear_failure_retried, const LinearTally& tally);
   static constexpr double kSporadicLinearFailures = 0.02;  // retry_allowed
   static constexpr double kUsableForcingFactor = 10;  // usable_direction
