@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <map>
 #include <vector>
 
@@ -13,6 +14,8 @@
 #include "scaling_plots.hpp"
 
 namespace stiction::harness {
+
+namespace fs = std::filesystem;
 
 const char* const kAtlasColumns =
     "scene,level,axis,value,solver,status,reason,exit_code,newton_iterations,krylov_iterations,state_changes,"
@@ -56,10 +59,22 @@ std::string why_it_failed(const std::string& out_dir, const Row& r) {
   return why;
 }
 
-std::string cell_text(const Row& r) {
+// Load increments the cell's run failed and retried with a smaller increment (the rows of
+// its steps.csv that did not converge; 0 when the run wrote none).
+int failed_increments(const std::string& out_dir, const Row& r) {
+  const std::string steps = out_dir + "/runs/" + cell_id(r.at("axis"), r.at("value"), r.at("solver")) + "/steps.csv";
+  if (!fs::exists(steps)) return 0;
+  int failed = 0;
+  for (const auto& row : read_csv(steps).rows) failed += number(row, "converged") == 0;
+  return failed;
+}
+
+std::string cell_text(const std::string& out_dir, const Row& r) {
   std::string text = r.at("status") == "ok"
                          ? fmt::format("{} N / {} K", r.at("newton_iterations"), r.at("krylov_iterations"))
                          : r.at("reason");
+  if (const int cut = failed_increments(out_dir, r); cut > 0 && r.at("status") == "ok")
+    text += fmt::format(", {} cut", cut);
   if (!r.at("violation").empty()) text += " **" + r.at("violation") + "**";
   return text;
 }
@@ -109,8 +124,8 @@ void write_atlas_report(const std::string& out_dir) {
   md += "\n\nHow it was made:\n\n```\n";
   for (const auto& c : table.comments) md += c + "\n";
   md += "```\n\nEach cell is the base scene with one key changed (`stiction solve SCENE --set KEY=VALUE`), run "
-        "in its own process. A converged cell shows its Newton (N) and Krylov (K) iterations; a failed one its "
-        "named reason. What must hold in every cell: it ends converged or with a named reason (exit code 3), "
+        "in its own process. A converged cell shows its Newton (N) and Krylov (K) iterations and, when some load "
+        "increments failed and were retried smaller, how many (cut); a failed one its named reason. What must hold in every cell: it ends converged or with a named reason (exit code 3), "
         "never a crash, a hang (the time limit) or a NaN in its output.\n\n## Cells that broke what must hold\n\n";
   std::vector<std::string> axes;
   std::map<std::string, std::vector<std::string>> values, solvers;
@@ -147,7 +162,7 @@ void write_atlas_report(const std::string& out_dir) {
       md += "| " + v + " |";
       for (const auto& s : solvers[axis]) {
         const auto it = cells[axis].find({v, s});
-        md += " " + (it == cells[axis].end() ? std::string("—") : cell_text(*it->second)) + " |";
+        md += " " + (it == cells[axis].end() ? std::string("—") : cell_text(out_dir, *it->second)) + " |";
       }
       md += "\n";
     }

@@ -676,18 +676,20 @@ TEST_F(StictionCli, SetChangesASceneKeyForOneRun) {
   }
 }
 
-// The stability atlas, short: hertz-cylinder-2d with friction 0 and 1 and with one Newton
-// iteration per increment allowed, for schur-amg and boomeramg (which cannot solve a contact
-// system). Whatever the tuning, every cell ends converged or with a named reason and exit
-// code 3, no output holds a NaN, and the report says no cell broke what must hold; a cell
+// The stability atlas, short: hertz-cylinder-2d with friction 0 and 1 and with one or three
+// Newton iterations per increment allowed, for schur-amg and boomeramg (which cannot solve a
+// contact system). Whatever the tuning, every cell ends converged or with a named reason and
+// exit code 3, no output holds a NaN, and the report says no cell broke what must hold; a
+// converged cell says how many increments were cut (schur-amg with three iterations: two,
+// the steps.csv of `stiction solve hertz-cylinder-2d --set newton.max_iterations=3`); a cell
 // stopped by the time limit is a hang, and the report names it.
 TEST_F(StictionCli, AtlasNamesEveryCellsEndAndReportsAHang) {
   const CliRun atlas = CliRun::of({"atlas", "hertz-cylinder-2d", "--solvers", "schur-amg,boomeramg", "--axis",
-                                   "contact[0].friction=0,1", "--axis", "newton.max_iterations=1", "--out", "atlas"},
+                                   "contact[0].friction=0,1", "--axis", "newton.max_iterations=1,3", "--out", "atlas"},
                                   dir_);
   ASSERT_EQ(atlas.exit_code, 0) << atlas.err;
   const auto rows = stiction::harness::read_csv((dir_ / "atlas" / "atlas.csv").string()).rows;
-  ASSERT_EQ(rows.size(), 6u);
+  ASSERT_EQ(rows.size(), 8u);
   int converged = 0, failed = 0;
   for (const auto& row : rows) {
     SCOPED_TRACE(row.at("axis") + " = " + row.at("value") + ", " + row.at("solver"));
@@ -698,10 +700,11 @@ TEST_F(StictionCli, AtlasNamesEveryCellsEndAndReportsAHang) {
     EXPECT_EQ(row.at("violation"), "");
     (row.at("status") == "ok" ? converged : failed) += 1;
   }
-  EXPECT_GE(converged, 2) << "schur-amg converges with friction 0 and 1";
-  EXPECT_GE(failed, 3) << "boomeramg on every cell";
+  EXPECT_GE(converged, 3) << "schur-amg converges with friction 0 and 1 and with three iterations";
+  EXPECT_GE(failed, 4) << "boomeramg on every cell";
   const std::string report = read_file(dir_ / "atlas" / "report.md");
   EXPECT_NE(report.find("None: every cell converged or named why"), std::string::npos) << report;
+  EXPECT_NE(report.find(", 2 cut |"), std::string::npos) << report;
   EXPECT_NE(report.find("## contact[0].friction"), std::string::npos);
   fs::remove(dir_ / "atlas" / "report.md");
   ASSERT_EQ(CliRun::of({"report", (dir_ / "atlas").string()}, dir_).exit_code, 0);
