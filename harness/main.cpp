@@ -166,6 +166,10 @@ int main(int argc, char** argv) {
       ->delimiter(',');
   tradeoff_cmd->add_option("--knob", tradeoff.knobs,
                            "a backend's own knob, option=v1,v2,... (PETSc option without its dash); repeatable");
+  tradeoff_cmd->add_option("--coarser-levels", tradeoff.coarser_levels,
+                           "mesh levels below --level where every backend also runs at its defaults (comma separated)")
+      ->delimiter(',')
+      ->check(CLI::Range(0, 3));
   tradeoff_cmd->add_flag("--discretisation", tradeoff.discretisation,
                          "also solve the reference one level finer: the discretisation error beside the solver's");
   tradeoff_cmd->add_option("--reference-solver", tradeoff.reference_solver, "backend of the reference (lu-mumps)");

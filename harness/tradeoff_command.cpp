@@ -90,9 +90,11 @@ std::vector<Setting> settings_of(const TradeoffOptions& o) {
 std::string number_or_blank(double x, bool set) { return set ? fmt::format("{:.3e}", x) : ""; }
 std::string number_or_blank(const std::optional<double>& x) { return number_or_blank(x.value_or(0), x.has_value()); }
 
-// One row of tradeoff.csv (kTradeoffColumns); accuracy null: not measured.
+// One row of tradeoff.csv (kTradeoffColumns); accuracy null: not measured. A run on a
+// coarser mesh than the reference's has no state-by-state comparison (states_compared false).
 std::string row_of(const scene::Scene& scene, const std::string& id, const Setting& s, const SolveRun& run,
-                   const SolutionAccuracy* accuracy, const std::optional<AnalyticAccuracy>& analytic) {
+                   const SolutionAccuracy* accuracy, const std::optional<AnalyticAccuracy>& analytic,
+                   bool states_compared = true) {
   const bool contact = accuracy && accuracy->contact;
   return fmt::format(
       "{},{},{},{},{},{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.3f},{:.3f},{:.1f},{},{},{},{},{},{},{},{},{},{}",
@@ -103,7 +105,8 @@ std::string row_of(const scene::Scene& scene, const std::string& id, const Setti
       run.linear_seconds, run.child.peak_rss_mb, number_or_blank(accuracy ? accuracy->displacement_l2 : 0, accuracy),
       number_or_blank(accuracy ? accuracy->displacement_h1 : 0, accuracy),
       number_or_blank(contact ? accuracy->contact_force : 0, contact),
-      number_or_blank(contact ? accuracy->peak_pressure : 0, contact), contact ? std::to_string(accuracy->state_changes) : "",
+      number_or_blank(contact ? accuracy->peak_pressure : 0, contact),
+      contact && states_compared ? std::to_string(accuracy->state_changes) : "",
       number_or_blank(analytic ? analytic->hertz_a : std::nullopt),
       number_or_blank(analytic ? analytic->hertz_p0 : std::nullopt),
       number_or_blank(analytic ? analytic->stick_zone : std::nullopt),
@@ -123,6 +126,37 @@ void solve_reference(const TradeoffOptions& o, int level, const scene::Scene& sc
                 ErrorKind::Numerical);
   if (!done.count(id)) append_durably(csv, row_of(scene, id, reference, run, nullptr, analytic_accuracy(scene, dir)));
   done.insert(id);
+}
+
+// The mesh as a knob: every backend at its defaults on each coarser level, its final state
+// against the reference at the sweep's level (a row "L<level>-<backend>-default").
+void run_coarser_levels(const TradeoffOptions& o, const scene::Scene& fine, const std::string& reference_dir,
+                        const ChildLimits& limits, const std::string& csv, std::set<std::string>& done) {
+  for (int level : o.coarser_levels) {
+    const auto coarse = open_scene(o.scene, level);
+    for (const auto& solver : o.solvers) {
+      const Setting s{solver, "", -1, -1};
+      const std::string id = fmt::format("L{}-{}", level, s.id());
+      if (done.count(id)) continue;
+      const std::string run_dir = (fs::path(o.out_dir) / "runs" / id).string();
+      const SolveRun run = run_solve_child(o.scene, level, s.arguments(), o.petsc_options, run_dir, limits);
+      const bool measured = run.status == "ok";
+      SolutionAccuracy a;
+      if (measured) {
+        const LevelDifference d = compare_levels(*coarse, run_dir, fine, reference_dir);
+        a.displacement_l2 = d.displacement_l2;
+        a.displacement_h1 = d.displacement_h1;
+        a.contact = d.contact;
+        a.contact_force = d.contact_force;
+        a.peak_pressure = d.peak_pressure;
+      }
+      append_durably(csv, row_of(*coarse, id, s, run, measured ? &a : nullptr,
+                                 measured ? analytic_accuracy(*coarse, run_dir) : std::nullopt, false));
+      done.insert(id);
+      fmt::print(stderr, "tradeoff: {} at level {}: {} in {:.2f} s\n", solver, level, run.status, run.wall_seconds);
+      write_tradeoff_report(o.out_dir);
+    }
+  }
 }
 
 }  // namespace
@@ -152,6 +186,9 @@ void run_tradeoff(const TradeoffOptions& o, const RunInfo& info) {
     if (!matches) throw Error(fmt::format("PETSc option '{}' matches none of the backends of this sweep", option));
   }
   if (o.discretisation && o.level >= 4) throw Error("--discretisation needs a level below 4 (it solves one finer)");
+  for (int l : o.coarser_levels)
+    if (l < 0 || l >= o.level)
+      throw Error(fmt::format("--coarser-levels: level {} is not below --level {}", l, o.level));
   const auto scene = open_scene(o.scene, o.level);  // bad input fails here, before any run
 
   const std::string out = o.out_dir, csv = out + "/tradeoff.csv";
@@ -211,6 +248,7 @@ void run_tradeoff(const TradeoffOptions& o, const RunInfo& info) {
                run.wall_seconds, measured ? fmt::format(", displacement error {:.2e} (H1)", a.displacement_h1) : "");
     write_tradeoff_report(out);
   }
+  run_coarser_levels(o, *scene, reference_dir, limits, csv, done);
   write_tradeoff_report(out);
 }
 

@@ -2,7 +2,7 @@
 // `stiction tradeoff`: speed against accuracy on one scene and mesh level. A reference is
 // solved first (an exact factorisation, Newton to a tight tolerance); then every backend
 // runs at its defaults and at each combination of the knobs (Newton tolerance, Krylov
-// tolerance, forcing), each run a child `stiction solve` with a time and memory limit. A
+// tolerance, forcing, a backend's own knob; at its defaults on coarser meshes), each run a child `stiction solve` with a time and memory limit. A
 // run's accuracy is its final state against the reference's (solution_accuracy.hpp), its
 // cost the run's wall time, linear-solve time, iterations and peak memory; each becomes a
 // row of tradeoff.csv, synced as it finishes. report.md (the Pareto front, a plot and the
@@ -28,6 +28,11 @@ struct TradeoffOptions {
   // Also solve the reference one level finer: how much the mesh changes the answer, beside
   // what the tolerances change (discretisation.csv).
   bool discretisation = false;
+  // Mesh levels below `level` at which every backend also runs at its defaults: the mesh as
+  // a knob. Their final states are compared with the reference at `level` (compare_levels:
+  // contact force and peak pressure, and the norms' differences) and with the analytic
+  // solution where the scene models one.
+  std::vector<int> coarser_levels;
   std::string reference_solver = "lu-mumps";
   double reference_newton_rtol = 1e-12;
   std::string out_dir = "reports/tradeoff";

@@ -22,6 +22,22 @@ atlas ironing-2d ironing-2d --quick --solvers schur-amg,schur-gamg,fieldsplit-sc
   --axis 'load.phases=[{until = 1.0, steps = 2}, {until = 2.0, steps = 200}];[{until = 1.0, steps = 5}, {until = 2.0, steps = 200}];[{until = 1.0, steps = 20}, {until = 2.0, steps = 200}]' \
   --axis 'level=0,1'
 
+# Large slip per load step: the sliding phase of ironing-2d in 200 load steps (the scene's:
+# 0.05 per step, about one facet of the slab top at level 0) down to 5 (2.0 per step, some 40
+# facets), over the first 2.0 of sliding (t = 1.2), with the automatic cut-back (the cells
+# say how many increments it cut) and without it (the raw method).
+slip='load.phases=[{until = 1.0, steps = 10}, {until = 2.0, steps = 200}];[{until = 1.0, steps = 10}, {until = 2.0, steps = 50}];[{until = 1.0, steps = 10}, {until = 2.0, steps = 20}];[{until = 1.0, steps = 10}, {until = 2.0, steps = 10}];[{until = 1.0, steps = 10}, {until = 2.0, steps = 5}]'
+atlas ironing-2d-large-slip ironing-2d --quick --set load.quick_until=1.2 \
+  --solvers schur-amg,schur-gamg,fieldsplit-schur,lu-mumps --axis "$slip"
+atlas ironing-2d-large-slip-no-cut ironing-2d --quick --set load.quick_until=1.2 --set load.max_cuts=0 \
+  --solvers schur-amg,schur-gamg,fieldsplit-schur,lu-mumps --axis "$slip"
+
+# Grazing contact: sliding-block-2d pressed 1e-2 (the scene), then by less, down to exactly
+# touching, then held off the plane by 1e-12 to 1e-6 (the gap tolerance is 1e-9 of the slave
+# surface's diameter), while its top is pulled along the plane.
+atlas sliding-block-2d-grazing sliding-block-2d --solvers schur-amg,schur-gamg,fieldsplit-schur,lu-mumps \
+  --axis 'dirichlet[0].value=[-1e-2];[-1e-6];[-1e-9];[-1e-12];[0.0];[1e-12];[1e-9];[1e-6]'
+
 # Near-incompressibility: bulk to shear modulus kappa / mu10 from 1e1 to 1e6, mixed u-p (the
 # paper's) and displacement only.
 kappa='material[0].kappa=10,100,1000,10000,100000,1000000'
