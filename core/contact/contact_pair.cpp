@@ -103,7 +103,7 @@ void ContactPair::evaluate_rows(double t, const std::vector<double>& u, const do
 }
 
 const std::vector<NodeKinematics>& ContactPair::kinematics_at(double t, const std::vector<double>& u) const {
-  if (!(last_evaluated_.valid && last_evaluated_.t == t && last_evaluated_.u == u)) {
+  if (!at_last_evaluated(t, u)) {
     last_evaluated_.valid = false;
     compute_kinematics(t, u, nullptr, nullptr, nullptr, 0, false, last_evaluated_.nodes);
     last_evaluated_.t = t;

@@ -123,6 +123,12 @@ protected:
                                   std::vector<double>* r_u, nonlinear::SparseEntries* jacobian, PetscInt offset,
                                   bool with_derivatives, std::vector<NodeKinematics>& nodes) const = 0;
 
+  // (t, u) is the point of the last evaluation without derivatives (whose kinematics
+  // kinematics_at keeps): a master may reuse what it found there.
+  bool at_last_evaluated(double t, const std::vector<double>& u) const {
+    return last_evaluated_.valid && last_evaluated_.t == t && last_evaluated_.u == u;
+  }
+
   int dim_;
   int slave_tag_;
   SlaveSurface slave_;

@@ -181,10 +181,17 @@ private:
 // For a ray intersection (intersect below, crossing = true) the sensitivity is ray_inverse
 // instead: with z = (eta, t) and R(z, u) = x + t nu - y(eta) = 0, dz = -A^-1 dR,
 // A = [-y_,eta  nu].
+//
+// face records where a closest point lies (kInterior: the facet's interior, K = D - 1;
+// kEdge0 + e: edge e of a 3D triangle; kVertex: an end vertex): with eta (and t of a
+// crossing) it rebuilds the projection without a search (projection_at).
+enum ProjectionFace : int { kInterior = 0, kEdge0 = 1, kVertex = 4 };
+
 template <int D>
 struct Projection {
   using G = Geometry<D>;
   bool found = false, interior = false, crossing = false;
+  int face = kInterior;
   typename G::Param eta = G::Param::Zero();
   typename G::ParamMatrix sensitivity = G::ParamMatrix::Zero();
   double distance = 0, t = 0;
@@ -260,6 +267,23 @@ Projection<D> closest_on_face(const FacetEvaluator<D>& ev, const SurfaceFacet& m
   return p;
 }
 
+// The crossing of the line x + t nu with m at (eta, t), found by intersect.
+template <int D>
+Projection<D> crossing_at(const FacetEvaluator<D>& ev, const SurfaceFacet& m, const typename Geometry<D>::Vec& x,
+                          const typename Geometry<D>::Vec& nu, const std::vector<double>& u,
+                          const typename Geometry<D>::Param& eta, double t) {
+  Projection<D> p;
+  p.found = p.interior = p.crossing = true;
+  p.eta = eta;
+  p.t = t;
+  p.y = ev.at(m, p.eta, u);
+  Eigen::Matrix<double, D, D> A;
+  A << -p.y.dx, nu;
+  p.ray_inverse = A.inverse();
+  p.distance = (x - p.y.x).norm();
+  return p;
+}
+
 }  // namespace detail
 
 // Closest point of x on segment m (2D): Newton from the midpoint; where it converges outside
@@ -274,7 +298,10 @@ inline Projection<2> project(const FacetEvaluator<2>& ev, const SurfaceFacet& m,
   if (result == detail::FaceNewton::NoMinimum) return {};
   if (result == detail::FaceNewton::Converged && detail::inside<1>(t, 0))
     return detail::closest_on_face<2, 1>(ev, m, x, u, t, I);
-  return detail::closest_on_face<2, 0>(ev, m, x, u, Param(std::clamp(t[0], 0.0, 1.0)), Eigen::Matrix<double, 1, 0>());
+  Projection<2> end =
+      detail::closest_on_face<2, 0>(ev, m, x, u, Param(std::clamp(t[0], 0.0, 1.0)), Eigen::Matrix<double, 1, 0>());
+  end.face = kVertex;
+  return end;
 }
 
 // Closest point of x on triangle m (3D, choice of master_point = "closest"): Newton inside
@@ -299,11 +326,12 @@ inline Projection<3> project(const FacetEvaluator<3>& ev, const SurfaceFacet& m,
     Eigen::Matrix<double, 1, 1> s(0.5);
     const auto along = detail::face_newton<3, 1>(ev, m, x, u, a, direction, s);
     if (along == detail::FaceNewton::NoMinimum) continue;
-    const Projection<3> p =
-        along == detail::FaceNewton::Converged && s[0] >= 0 && s[0] <= 1
-            ? detail::closest_on_face<3, 1>(ev, m, x, u, Param(a + direction * s[0]), direction)
-            : detail::closest_on_face<3, 0>(ev, m, x, u, Param(a + direction * std::clamp(s[0], 0.0, 1.0)),
-                                            Eigen::Matrix<double, 2, 0>());  // the nearer end vertex
+    const bool on_edge = along == detail::FaceNewton::Converged && s[0] >= 0 && s[0] <= 1;
+    Projection<3> p =
+        on_edge ? detail::closest_on_face<3, 1>(ev, m, x, u, Param(a + direction * s[0]), direction)
+                : detail::closest_on_face<3, 0>(ev, m, x, u, Param(a + direction * std::clamp(s[0], 0.0, 1.0)),
+                                                Eigen::Matrix<double, 2, 0>());  // the nearer end vertex
+    p.face = on_edge ? kEdge0 + e : kVertex;
     if (!best.found || p.distance < best.distance) best = p;
   }
   return best;
@@ -340,16 +368,32 @@ Projection<D> intersect(const FacetEvaluator<D>& ev, const SurfaceFacet& m, cons
     if (!detail::inside<P>(typename G::Param(z.template head<P>()), 0.5)) return p;
     if (step.template head<P>().norm() < 1e-10 && ++polish > 2) {
       if (!detail::inside<P>(typename G::Param(z.template head<P>()), 0)) return p;
-      p.found = p.interior = p.crossing = true;
-      p.eta = z.template head<P>();
-      p.t = z[P];
-      p.y = ev.at(m, p.eta, u);
-      A << -p.y.dx, nu;
-      p.ray_inverse = A.inverse();
-      p.distance = (x - p.y.x).norm();
-      return p;
+      return detail::crossing_at<D>(ev, m, x, nu, u, z.template head<P>(), z[P]);
     }
   }
+  return p;
+}
+
+// The projection of kind `face` (or the crossing) at eta (t) on m, as the search found it:
+// the same arithmetic as the search's last step, so the same projection to the bit.
+template <int D>
+Projection<D> projection_at(const FacetEvaluator<D>& ev, const SurfaceFacet& m, const typename Geometry<D>::Vec& x,
+                            const typename Geometry<D>::Vec& nu, const std::vector<double>& u, bool crossing,
+                            int face, const typename Geometry<D>::Param& eta, double t) {
+  using Param = typename Geometry<D>::Param;
+  if (crossing) return detail::crossing_at<D>(ev, m, x, nu, u, eta, t);
+  if (face == kInterior)
+    return detail::closest_on_face<D, D - 1>(ev, m, x, u, eta, Eigen::Matrix<double, D - 1, D - 1>::Identity());
+  Projection<D> p;
+  if (face == kVertex) {
+    p = detail::closest_on_face<D, 0>(ev, m, x, u, eta, Eigen::Matrix<double, D - 1, 0>());
+  } else if constexpr (D == 3) {
+    const Param corner[3] = {Param(0, 0), Param(1, 0), Param(0, 1)};
+    const int e = face - kEdge0;
+    const Eigen::Matrix<double, 2, 1> direction = corner[(e + 1) % 3] - corner[e];
+    p = detail::closest_on_face<3, 1>(ev, m, x, u, eta, direction);
+  }
+  p.face = face;
   return p;
 }
 

@@ -302,11 +302,11 @@ void blend(std::vector<Branch<2>>& out, bool with_derivatives, std::map<PetscInt
 // and cuts along projected edges; the master point is instead, by default, where the slave
 // normal through s crosses the master, which is continuous across master edges, or with
 // master_point = "closest" the closest point without a blend (surface_contact.hpp).
-// dw0 receives d w_0 / du (w_1 = 1 - w_0) when derivatives are asked.
+// This chooses the branches (the search); finish_branches completes them.
 template <int D>
 std::vector<Branch<D>> contact_point(const FacetEvaluator<D>& ev, const Facet& f, const FacetPoint<D>& s,
                                      const MasterCandidates<D>& candidates, const std::vector<double>& u,
-                                     double search_radius, bool with_derivatives, std::map<PetscInt, double>& dw0) {
+                                     double search_radius) {
   std::vector<Branch<D>> valid = valid_projections<D>(ev, f, s, candidates, u, search_radius);
   if (valid.empty()) return {};
   const auto closest = std::min_element(valid.begin(), valid.end(), [](const Branch<D>& a, const Branch<D>& b) {
@@ -322,11 +322,18 @@ std::vector<Branch<D>> contact_point(const FacetEvaluator<D>& ev, const Facet& f
           partner = &b;
     if (partner) out.push_back(*partner);
   }
+  return out;
+}
+
+// The branches' derivatives (when asked) and a blended 2D point's weights; dw0 receives
+// d w_0 / du (w_1 = 1 - w_0) when derivatives are asked.
+template <int D>
+void finish_branches(const FacetEvaluator<D>& ev, const Facet& f, const FacetPoint<D>& s, std::vector<Branch<D>>& out,
+                     bool with_derivatives, std::map<PetscInt, double>& dw0) {
   for (Branch<D>& b : out)
     if (with_derivatives) projection_derivative<D>(ev, f, s, b);
   if constexpr (D == 2)
     if (out.size() == 2) blend(out, with_derivatives, dw0);
-  return out;
 }
 
 // One slave quadrature point at parameter eta of facet f and its contact point: the gap
@@ -344,15 +351,16 @@ struct PointKinematics {
   std::vector<typename Geometry<D>::Tangents> branch_rate;
 };
 
-template <int D>
+// choose(s) gives the branches of slave point s (contact_point, or what a search found).
+template <int D, class Choose>
 PointKinematics<D> point_kinematics(const FacetEvaluator<D>& ev, const Facet& f, const typename Geometry<D>::Param& eta,
-                                    const MasterCandidates<D>& candidates, const std::vector<double>& u,
-                                    const std::vector<double>& u_previous, double search_radius,
-                                    bool with_derivatives) {
+                                    const Choose& choose, const std::vector<double>& u,
+                                    const std::vector<double>& u_previous, bool with_derivatives) {
   using Vec = typename Geometry<D>::Vec;
   PointKinematics<D> p;
   p.s = ev.at(f, eta, u);
-  p.branches = contact_point<D>(ev, f, p.s, candidates, u, search_radius, with_derivatives, p.dw0);
+  p.branches = choose(p.s);
+  finish_branches<D>(ev, f, p.s, p.branches, with_derivatives, p.dw0);
   Vec y = Vec::Zero();
   for (const Branch<D>& b : p.branches) {
     p.branch_motion.push_back(ev.values(*b.facet, b.p.y, u) - ev.values(*b.facet, b.p.y, u_previous));
@@ -572,17 +580,18 @@ void SurfaceContact::nodal_normals(const std::vector<double>& u, const std::vect
   }
 }
 
-void SurfaceContact::compute_kinematics(double, const std::vector<double>& u, const double* lambda,
+void SurfaceContact::compute_kinematics(double t, const std::vector<double>& u, const double* lambda,
                                         std::vector<double>* r_u, nonlinear::SparseEntries* jacobian, PetscInt offset,
                                         bool with_derivatives, std::vector<NodeKinematics>& nodes) const {
-  if (dim_ == 2) kinematics<2>(u, lambda, r_u, jacobian, offset, with_derivatives, nodes);
-  else kinematics<3>(u, lambda, r_u, jacobian, offset, with_derivatives, nodes);
+  if (dim_ == 2) kinematics<2>(t, u, lambda, r_u, jacobian, offset, with_derivatives, nodes);
+  else kinematics<3>(t, u, lambda, r_u, jacobian, offset, with_derivatives, nodes);
 }
 
 template <int D>
-void SurfaceContact::kinematics(const std::vector<double>& u, const double* lambda, std::vector<double>* r_u,
-                                nonlinear::SparseEntries* jacobian, PetscInt offset, bool with_derivatives,
-                                std::vector<NodeKinematics>& nodes) const {
+void SurfaceContact::kinematics(double t, const std::vector<double>& u, const double* lambda,
+                                std::vector<double>* r_u, nonlinear::SparseEntries* jacobian, PetscInt offset,
+                                bool with_derivatives, std::vector<NodeKinematics>& nodes) const {
+  using Param = typename Geometry<D>::Param;
   const FacetEvaluator<D> ev(space_.kind(), space_.nodes_per_facet());
   nodes.assign(slave_.n_nodes(), NodeKinematics{});
   // Derivatives only where the Jacobian reads them: an inactive node's row (c = lambda) does
@@ -607,30 +616,74 @@ void SurfaceContact::kinematics(const std::vector<double>& u, const double* lamb
   nodal_normals<D>(u, derive, nodes);
   std::vector<double> covered(slave_.n_nodes(), 0.0);  // integral of phi_i over projected points
 
+  // The Jacobian at the last evaluated iterate replays that evaluation's search; an
+  // evaluation without derivatives records its own.
+  const bool replay = with_derivatives && found_.valid && at_last_evaluated(t, u);
+  const bool record = !with_derivatives;
+  if (record) {
+    found_ = SearchRecord{};
+    found_.facet_points.assign(slave_facets_.size() + 1, 0);
+    found_.searched.assign(slave_facets_.size(), 0);
+  }
   std::vector<std::pair<Box<D>, int>> boxes;
-  for (size_t m = 0; m < master_facets_.size(); ++m)
-    boxes.emplace_back(facet_box<D>(ev, master_facets_[m], u, 0.0), static_cast<int>(m));
+  if (!replay)
+    for (size_t m = 0; m < master_facets_.size(); ++m)
+      boxes.emplace_back(facet_box<D>(ev, master_facets_[m], u, 0.0), static_cast<int>(m));
   const MasterTree<D> tree(boxes.begin(), boxes.end());
 
   std::vector<std::pair<Box<D>, int>> hits;
   MergedEntries facet_entries;
-  for (const Facet& f : slave_facets_) {
+  for (size_t k = 0; k < slave_facets_.size(); ++k) {
+    const Facet& f = slave_facets_[k];
+    if (record) found_.facet_points[k] = static_cast<int>(found_.points.size());
     MasterCandidates<D> candidates{&tree, &master_facets_, {},
                                    settings_.master_point == ContactSettings::MasterPoint::Closest};
-    const Box<D> near = facet_box<D>(ev, f, u, search_radius_);
-    if constexpr (D == 2) {
-      hits.clear();
-      tree.query(bgi::intersects(near), std::back_inserter(hits));
-      for (const auto& [box, m] : hits)  // self-contact: a facet never touches its neighbour
-        if (!share_vertex(f, master_facets_[m])) candidates.listed.push_back(&master_facets_[m]);
-      if (candidates.listed.empty()) continue;
-    } else if (tree.qbegin(bgi::intersects(near)) == tree.qend()) {
-      continue;
+    std::vector<std::pair<Param, double>> points;
+    if (replay) {
+      if (!found_.searched[k]) continue;
+      for (int q = found_.facet_points[k]; q < found_.facet_points[k + 1]; ++q)
+        points.emplace_back(Eigen::Map<const Param>(found_.points[q].eta), found_.points[q].weight);
+    } else {
+      const Box<D> near = facet_box<D>(ev, f, u, search_radius_);
+      if constexpr (D == 2) {
+        hits.clear();
+        tree.query(bgi::intersects(near), std::back_inserter(hits));
+        for (const auto& [box, m] : hits)  // self-contact: a facet never touches its neighbour
+          if (!share_vertex(f, master_facets_[m])) candidates.listed.push_back(&master_facets_[m]);
+        if (candidates.listed.empty()) continue;
+      } else if (tree.qbegin(bgi::intersects(near)) == tree.qend()) {
+        continue;
+      }
+      points = integration_points<D>(ev, f, candidates, u);
+      if (record) found_.searched[k] = 1;
     }
     const bool derive_f = facet_derives(f);
-    for (const auto& [eta, weight] : integration_points<D>(ev, f, candidates, u)) {
-      const PointKinematics<D> p =
-          point_kinematics<D>(ev, f, eta, candidates, u, u_previous_, search_radius_, derive_f);
+    for (size_t q = 0; q < points.size(); ++q) {
+      const auto& [eta, weight] = points[q];
+      const auto choose = [&](const FacetPoint<D>& s) {
+        if (!replay) return contact_point<D>(ev, f, s, candidates, u, search_radius_);
+        const FoundPoint& found = found_.points[found_.facet_points[k] + q];
+        const typename Geometry<D>::Vec normal = facets::outward_normal<D>(f, s.dx);
+        std::vector<Branch<D>> out(found.n_branches);
+        for (int b = 0; b < found.n_branches; ++b) {
+          const FoundBranch& fb = found_.branches[found.first_branch + b];
+          out[b].facet = &master_facets_[fb.facet];
+          out[b].p = facets::projection_at<D>(ev, *out[b].facet, s.x, normal, u, fb.crossing, fb.face,
+                                              Eigen::Map<const Param>(fb.eta), fb.t);
+        }
+        return out;
+      };
+      const PointKinematics<D> p = point_kinematics<D>(ev, f, eta, choose, u, u_previous_, derive_f);
+      if (record) {
+        found_.points.push_back({{0, 0}, weight, static_cast<int>(found_.branches.size()),
+                                 static_cast<int>(p.branches.size())});
+        Eigen::Map<Param>(found_.points.back().eta) = eta;
+        for (const Branch<D>& b : p.branches) {
+          found_.branches.push_back({static_cast<int>(b.facet - master_facets_.data()), b.p.crossing, b.p.face,
+                                     {0, 0}, b.p.t});
+          Eigen::Map<Param>(found_.branches.back().eta) = b.p.eta;
+        }
+      }
       if (p.branches.empty()) continue;
       const double jacobian_f = ev.reference_measure(f, p.s);
       Vec3 lam_w = Vec3::Zero();
@@ -650,6 +703,10 @@ void SurfaceContact::kinematics(const std::vector<double>& u, const double* lamb
       if (r_u && jacobian && derive_f) add_force_variation<D>(ev, p, lam_w, facet_entries);
     }
     if (jacobian) facet_entries.flush_into(*jacobian);
+  }
+  if (record) {
+    found_.facet_points.back() = static_cast<int>(found_.points.size());
+    found_.valid = true;
   }
   for (int i = 0; i < slave_.n_nodes(); ++i) nodes[i].admissible = covered[i] > 0;
 }

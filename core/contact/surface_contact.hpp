@@ -78,7 +78,7 @@ private:
                           nonlinear::SparseEntries* jacobian, PetscInt offset, bool with_derivatives,
                           std::vector<NodeKinematics>& nodes) const override;
   template <int D>
-  void kinematics(const std::vector<double>& u, const double* lambda, std::vector<double>* r_u,
+  void kinematics(double t, const std::vector<double>& u, const double* lambda, std::vector<double>* r_u,
                   nonlinear::SparseEntries* jacobian, PetscInt offset, bool with_derivatives,
                   std::vector<NodeKinematics>& nodes) const;
   template <int D>
@@ -90,6 +90,29 @@ private:
   std::vector<SurfaceFacet> slave_facets_, master_facets_;
   int master_tag_;
   double search_radius_;
+
+  // What the last evaluation without derivatives found (at ContactPair's last evaluated
+  // point): per slave facet its integration points, per point the master points it chose.
+  // The Jacobian at that iterate rebuilds them (facets::projection_at) instead of searching
+  // the master again, which was half of its time. A few dozen bytes per point.
+  struct FoundPoint {
+    double eta[2], weight;
+    int first_branch, n_branches;
+  };
+  struct FoundBranch {
+    int facet;
+    bool crossing;
+    int face;
+    double eta[2], t;
+  };
+  struct SearchRecord {
+    bool valid = false;
+    std::vector<int> facet_points;  // slave facet k's points: [facet_points[k], facet_points[k + 1])
+    std::vector<char> searched;      // slave facet k had master candidates
+    std::vector<FoundPoint> points;
+    std::vector<FoundBranch> branches;
+  };
+  mutable SearchRecord found_;
 };
 
 }  // namespace stiction::contact
