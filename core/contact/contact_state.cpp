@@ -21,7 +21,8 @@ NodeState next_state(NodeState now, const NodeQuantities& q, double mu, const St
   }
   if (q.lambda_n < -tol.force) return NodeState::Inactive;  // C
   if (mu == 0) return NodeState::Slip;                      // frictionless: lambda_t = 0
-  if (now == NodeState::Slip && q.gt_dot_lt > tol.slip * q.gt_norm * q.lambda_t_norm) return NodeState::Stick;  // D
+  if (now == NodeState::Slip && q.lambda_t_norm > tol.force && q.gt_dot_lt > tol.slip * q.gt_norm * q.lambda_t_norm)
+    return NodeState::Stick;  // D
   if (now == NodeState::Stick && q.lambda_t_norm > mu * q.lambda_n * (1 + tol.slip) + tol.force)
     return NodeState::Slip;  // E
   return now;

@@ -26,8 +26,9 @@ SolvedScene solve_scene_text(const std::string& toml, int level, const std::stri
   return solve(scene::build_scene(toml, "test-scene", ".", level), backend);
 }
 
-SolvedScene solve_builtin(const std::string& name, int level, const std::string& backend) {
-  return solve(harness::open_scene(name, level), backend);
+SolvedScene solve_builtin(const std::string& name, int level, const std::string& backend,
+                          const std::vector<std::string>& overrides) {
+  return solve(harness::open_scene(name, level, overrides), backend);
 }
 
 std::vector<double> SolvedScene::displacement_near(const std::vector<double>& X) const {

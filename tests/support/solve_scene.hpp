@@ -22,7 +22,9 @@ struct SolvedScene {
 };
 
 SolvedScene solve_scene_text(const std::string& toml, int level, const std::string& backend);
-SolvedScene solve_builtin(const std::string& name, int level, const std::string& backend);
+// overrides: KEY=VALUE scene settings, as `stiction solve --set` takes them.
+SolvedScene solve_builtin(const std::string& name, int level, const std::string& backend,
+                          const std::vector<std::string>& overrides = {});
 
 // Replaces the first occurrence of `from` by `to` (fails the test when absent).
 std::string replaced(std::string text, const std::string& from, const std::string& to);

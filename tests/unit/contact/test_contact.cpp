@@ -483,6 +483,12 @@ TEST(ContactState, Transitions) {
   EXPECT_EQ(next_state(NodeState::Slip, q, 0.3, tol), NodeState::Stick);         // D
   q.gt_dot_lt = -0.3e-3;
   EXPECT_EQ(next_state(NodeState::Slip, q, 0.3, tol), NodeState::Slip);
+  // A vanishing normal force (within tol.force) leaves a round-off lambda_t whose direction
+  // means nothing: the "reversed" slip does not make the node stick.
+  q.lambda_n = -2e-13, q.lambda_t_norm = 5e-13, q.gt_norm = 1e-6, q.gt_dot_lt = 5e-19;
+  EXPECT_EQ(next_state(NodeState::Slip, q, 0.3, tol), NodeState::Slip);  // D needs a friction force
+  q.lambda_t_norm = 5e-12, q.gt_dot_lt = 5e-18;
+  EXPECT_EQ(next_state(NodeState::Slip, q, 0.3, tol), NodeState::Stick);
 }
 
 }  // namespace
