@@ -120,8 +120,8 @@ void write_tradeoff_report(const std::string& out_dir) {
   const std::string level = table.rows.empty() ? "" : table.rows.front().at("level");
   std::vector<const Row*> runs, coarser;
   for (const auto& r : table.rows) {
-    if (r.at("level") != level) {
-      coarser.push_back(&r);
+    if (r.at("level") != level) {  // a finer --discretisation reference is reported with it
+      if (std::stoi(r.at("level")) < std::stoi(level)) coarser.push_back(&r);
       continue;
     }
     md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", r.at("id"),
@@ -190,10 +190,12 @@ void write_tradeoff_report(const std::string& out_dir) {
         return r.at("solver") == best->at("solver") && r.at("default") == "1" && r.at("status") == "ok" &&
                r.at("level") == level;
       });
-      if (defaults != table.rows.end() && &*defaults != best)
-        md += fmt::format(": {:.1f}x faster than {}'s defaults ({} s, error {})",
-                          number(*defaults, "wall_seconds") / number(*best, "wall_seconds"), best->at("solver"),
+      if (defaults != table.rows.end() && &*defaults != best) {
+        const double speedup = number(*defaults, "wall_seconds") / number(*best, "wall_seconds");
+        md += fmt::format(": {:.1f}x {} {}'s defaults ({} s, error {})", speedup >= 1 ? speedup : 1 / speedup,
+                          speedup >= 1 ? "faster than" : "the time of", best->at("solver"),
                           defaults->at("wall_seconds"), cell(*defaults, "error_u_h1"));
+      }
       md += ".\n";
     }
   }

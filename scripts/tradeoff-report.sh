@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Speed against accuracy (reports/tradeoff/<scene>-L<level>/): `stiction tradeoff` on a 3D
 # Hertz contact scene (errors against the tight reference and against Hertz, and the
-# reference one level finer for the discretisation error) and on the block without contact.
+# reference one level finer for the discretisation error), on the block without contact and
+# on Cattaneo-Mindlin's partial slip (against Mindlin's stick zone, with coarser meshes).
 # TRADEOFF_OUT (default reports/tradeoff) and TRADEOFF_TIME_LIMIT (seconds per run, default
 # 1200) adjust it; an interrupted report continues with --resume.
 # Usage: scripts/tradeoff-report.sh [build dir]
@@ -25,4 +26,7 @@ tradeoff hertz-sphere-3d 1 --discretisation --solvers schur-amg,schur-gamg,field
 # exact factorisation of 333 000 unknowns: 14 minutes and 7.8 GB).
 tradeoff block-compression 0 --solvers schur-amg,schur-gamg,gamg,lu-mumps \
   --knob schur_amg_ll_pc_hypre_boomeramg_strong_threshold=0.25,0.7 --knob schur_amg_qq_pc_sor_its=2
+# Partial slip against Mindlin's stick zone, level 1, with the mesh as a knob (the backends
+# on level 0) and the reference one level finer.
+tradeoff cattaneo-mindlin-2d 1 --discretisation --coarser-levels 0 --solvers schur-amg,schur-gamg,lu-mumps
 echo "tradeoff-report: wrote $out" >&2
