@@ -26,8 +26,10 @@
 //     hertz-spheres-3d with the key set, level 0, lu-mumps stops at step 1 after 25
 //     iterations (26 state changes in the last) and schur-amg breaks down after 9.
 //   * candidates: a Boost.Geometry R-tree over the master facets' bounding boxes, rebuilt at
-//     every evaluation. A point whose master point is farther than the search radius, off
-//     the facet, or on the master's back does not contribute.
+//     every evaluation without derivatives; the Jacobian at that iterate rebuilds the
+//     master points the evaluation found instead of searching again (found_ below). A point
+//     whose master point is farther than the search radius, off the facet, or on the
+//     master's back does not contribute.
 //   * integration (choice). 2D, segments (mortar-style): each slave facet is cut where the
 //     projections of the master facet's end points land, and each piece is integrated with
 //     its own Gauss rule, so the integrands are smooth on every piece and B_ext is exact
