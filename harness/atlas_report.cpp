@@ -125,8 +125,9 @@ void write_atlas_report(const std::string& out_dir) {
   for (const auto& c : table.comments) md += c + "\n";
   md += "```\n\nEach cell is the base scene with one key changed (`stiction solve SCENE --set KEY=VALUE`), run "
         "in its own process. A converged cell shows its Newton (N) and Krylov (K) iterations and, when some load "
-        "increments failed and were retried smaller, how many (cut); a failed one its named reason. What must hold in every cell: it ends converged or with a named reason (exit code 3), "
-        "never a crash, a hang (the time limit) or a NaN in its output.\n\n## Cells that broke what must hold\n\n";
+        "increments failed and were retried smaller, how many (cut); a failed one its named reason. What must "
+        "hold in every cell: it ends converged or with a named reason (exit code 3), never a crash, a hang (the "
+        "time limit) or a NaN in its output.\n\n## Cells that broke what must hold\n\n";
   std::vector<std::string> axes;
   std::map<std::string, std::vector<std::string>> values, solvers;
   std::map<std::string, std::map<std::pair<std::string, std::string>, const Row*>> cells;

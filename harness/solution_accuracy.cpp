@@ -19,14 +19,14 @@ namespace {
 
 struct FinalState {
   std::vector<double> u;
-  // Every slave node in contact at the last step: its mesh vertex and multiplier magnitude.
-  std::vector<std::pair<int, double>> in_contact;
+  // Every slave node at the last step: its mesh vertex, state, normal multiplier and the
+  // multiplier's magnitude.
   struct SlaveNode {
     int vertex = 0;
     std::string state;
-    double lambda_n = 0;
+    double lambda_n = 0, lambda_norm = 0;
   };
-  std::vector<SlaveNode> slave_nodes;          // every slave node at the last step
+  std::vector<SlaveNode> slave_nodes;
   std::vector<double> contact_force;           // every pair's F3 components, in column order
   double peak_pressure = 0;                    // largest lambda_n at the last step
   std::map<std::string, std::string> states;   // "pair/node" -> state at the last step
@@ -61,13 +61,11 @@ FinalState read_final_state(const scene::Scene& scene, const std::string& dir) {
     if (row.at("step") != final_step) continue;
     f.peak_pressure = std::max(f.peak_pressure, number(row, "lambda_n"));
     f.states[row.at("pair") + "/" + row.at("node")] = row.at("state");
-    f.slave_nodes.push_back({static_cast<int>(number(row, "vertex")), row.at("state"), number(row, "lambda_n")});
-    if (row.at("state") != "inactive") {
-      double p2 = 0;
-      for (const char* k : {"lambda_x", "lambda_y", "lambda_z"})
-        if (row.count(k)) p2 += std::pow(number(row, k), 2);
-      f.in_contact.emplace_back(static_cast<int>(number(row, "vertex")), std::sqrt(p2));
-    }
+    double p2 = 0;
+    for (const char* k : {"lambda_x", "lambda_y", "lambda_z"})
+      if (row.count(k)) p2 += std::pow(number(row, k), 2);
+    f.slave_nodes.push_back(
+        {static_cast<int>(number(row, "vertex")), row.at("state"), number(row, "lambda_n"), std::sqrt(p2)});
   }
   return f;
 }
@@ -136,9 +134,10 @@ std::optional<AnalyticAccuracy> analytic_accuracy(const scene::Scene& scene, con
   AnalyticAccuracy a;
   if (hertz) {
     std::vector<std::pair<double, double>> profile;
-    for (const auto& [vertex, p] : f.in_contact) {
-      const double* X = scene.mesh.vertex(vertex);
-      profile.emplace_back(hertz->dim == 2 ? X[0] : std::hypot(X[0], X[2]), p);
+    for (const auto& node : f.slave_nodes) {
+      if (node.state == "inactive") continue;
+      const double* X = scene.mesh.vertex(node.vertex);
+      profile.emplace_back(hertz->dim == 2 ? X[0] : std::hypot(X[0], X[2]), node.lambda_norm);
     }
     if (profile.size() >= 2 && f.contact_force.size() >= 2) {
       const HertzComparison h = compare_with_hertz(*hertz, f.contact_force[1], profile);

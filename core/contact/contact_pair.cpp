@@ -90,12 +90,17 @@ void ContactPair::evaluate(double t, const std::vector<double>& u, const double*
     write_rows(t, nodes, lambda, r_c, jacobian, offset);
     return;
   }
+  evaluate_kinematics(t, u, lambda, &r_u, offset);
+  write_rows(t, last_evaluated_.nodes, lambda, r_c, nullptr, offset);
+}
+
+void ContactPair::evaluate_kinematics(double t, const std::vector<double>& u, const double* lambda,
+                                      std::vector<double>* r_u, PetscInt offset) const {
   last_evaluated_.valid = false;
-  compute_kinematics(t, u, lambda, &r_u, nullptr, offset, false, last_evaluated_.nodes);
+  compute_kinematics(t, u, lambda, r_u, nullptr, offset, false, last_evaluated_.nodes);
   last_evaluated_.t = t;
   last_evaluated_.u = u;
   last_evaluated_.valid = true;
-  write_rows(t, last_evaluated_.nodes, lambda, r_c, nullptr, offset);
 }
 
 void ContactPair::evaluate_rows(double t, const std::vector<double>& u, const double* lambda, double* r_c) const {
@@ -103,13 +108,7 @@ void ContactPair::evaluate_rows(double t, const std::vector<double>& u, const do
 }
 
 const std::vector<NodeKinematics>& ContactPair::kinematics_at(double t, const std::vector<double>& u) const {
-  if (!at_last_evaluated(t, u)) {
-    last_evaluated_.valid = false;
-    compute_kinematics(t, u, nullptr, nullptr, nullptr, 0, false, last_evaluated_.nodes);
-    last_evaluated_.t = t;
-    last_evaluated_.u = u;
-    last_evaluated_.valid = true;
-  }
+  if (!at_last_evaluated(t, u)) evaluate_kinematics(t, u, nullptr, nullptr, 0);
   return last_evaluated_.nodes;
 }
 

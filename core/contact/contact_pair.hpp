@@ -147,6 +147,10 @@ private:
   // updates the states and writes the rows of the new states there, and each evaluation of
   // a deformable master searches it for every slave quadrature point.
   const std::vector<NodeKinematics>& kinematics_at(double t, const std::vector<double>& u) const;
+  // Evaluates the kinematics without derivatives at (t, u) (and the forces into r_u when not
+  // null) and keeps them as the last evaluated point's.
+  void evaluate_kinematics(double t, const std::vector<double>& u, const double* lambda, std::vector<double>* r_u,
+                           PetscInt offset) const;
   // Writes r_c (and, with jacobian, C_u and C_l) from the nodes' kinematics.
   void write_rows(double t, const std::vector<NodeKinematics>& nodes, const double* lambda, double* r_c,
                   nonlinear::SparseEntries* jacobian, PetscInt offset) const;

@@ -625,6 +625,28 @@ void SurfaceContact::kinematics(double t, const std::vector<double>& u, const do
     found_.facet_points.assign(slave_facets_.size() + 1, 0);
     found_.searched.assign(slave_facets_.size(), 0);
   }
+  // The branches the record holds for a point (slave point s of facet f), rebuilt.
+  const auto replayed_branches = [&](const Facet& f, const FacetPoint<D>& s, const FoundPoint& found) {
+    const typename Geometry<D>::Vec normal = facets::outward_normal<D>(f, s.dx);
+    std::vector<Branch<D>> out(found.n_branches);
+    for (int b = 0; b < found.n_branches; ++b) {
+      const FoundBranch& fb = found_.branches[found.first_branch + b];
+      out[b].facet = &master_facets_[fb.facet];
+      out[b].p = facets::projection_at<D>(ev, *out[b].facet, s.x, normal, u, fb.crossing, fb.face,
+                                          Eigen::Map<const Param>(fb.eta), fb.t);
+    }
+    return out;
+  };
+  const auto record_point = [&](const Param& eta, double weight, const std::vector<Branch<D>>& branches) {
+    found_.points.push_back(
+        {{0, 0}, weight, static_cast<int>(found_.branches.size()), static_cast<int>(branches.size())});
+    Eigen::Map<Param>(found_.points.back().eta) = eta;
+    for (const Branch<D>& b : branches) {
+      found_.branches.push_back(
+          {static_cast<int>(b.facet - master_facets_.data()), b.p.crossing, b.p.face, {0, 0}, b.p.t});
+      Eigen::Map<Param>(found_.branches.back().eta) = b.p.eta;
+    }
+  };
   std::vector<std::pair<Box<D>, int>> boxes;
   if (!replay)
     for (size_t m = 0; m < master_facets_.size(); ++m)
@@ -661,29 +683,11 @@ void SurfaceContact::kinematics(double t, const std::vector<double>& u, const do
     for (size_t q = 0; q < points.size(); ++q) {
       const auto& [eta, weight] = points[q];
       const auto choose = [&](const FacetPoint<D>& s) {
-        if (!replay) return contact_point<D>(ev, f, s, candidates, u, search_radius_);
-        const FoundPoint& found = found_.points[found_.facet_points[k] + q];
-        const typename Geometry<D>::Vec normal = facets::outward_normal<D>(f, s.dx);
-        std::vector<Branch<D>> out(found.n_branches);
-        for (int b = 0; b < found.n_branches; ++b) {
-          const FoundBranch& fb = found_.branches[found.first_branch + b];
-          out[b].facet = &master_facets_[fb.facet];
-          out[b].p = facets::projection_at<D>(ev, *out[b].facet, s.x, normal, u, fb.crossing, fb.face,
-                                              Eigen::Map<const Param>(fb.eta), fb.t);
-        }
-        return out;
+        return replay ? replayed_branches(f, s, found_.points[found_.facet_points[k] + q])
+                      : contact_point<D>(ev, f, s, candidates, u, search_radius_);
       };
       const PointKinematics<D> p = point_kinematics<D>(ev, f, eta, choose, u, u_previous_, derive_f);
-      if (record) {
-        found_.points.push_back({{0, 0}, weight, static_cast<int>(found_.branches.size()),
-                                 static_cast<int>(p.branches.size())});
-        Eigen::Map<Param>(found_.points.back().eta) = eta;
-        for (const Branch<D>& b : p.branches) {
-          found_.branches.push_back({static_cast<int>(b.facet - master_facets_.data()), b.p.crossing, b.p.face,
-                                     {0, 0}, b.p.t});
-          Eigen::Map<Param>(found_.branches.back().eta) = b.p.eta;
-        }
-      }
+      if (record) record_point(eta, weight, p.branches);
       if (p.branches.empty()) continue;
       const double jacobian_f = ev.reference_measure(f, p.s);
       Vec3 lam_w = Vec3::Zero();
