@@ -23,13 +23,6 @@ double l2_norm(const std::vector<double>& v) {
   return std::sqrt(s);
 }
 
-void copy_to_vec(const std::vector<double>& src, Vec dst) {
-  PetscScalar* a;
-  STICTION_PETSC(VecGetArray(dst, &a));
-  std::copy(src.begin(), src.end(), a);
-  STICTION_PETSC(VecRestoreArray(dst, &a));
-}
-
 }  // namespace
 
 std::string to_string(NewtonReason r) {
@@ -73,131 +66,32 @@ double next_forcing_term(double eta_prev, double r_now, double r_prev, double r_
 
 }  // namespace
 
-MatNullSpace rigid_body_modes(MPI_Comm comm, const fem::FieldSpace& space, int n_extra) {
-  const int d = space.dim();
-  const mesh::Mesh& m = space.mesh();
-  double c[3] = {0, 0, 0};  // rotate about the centroid: better-conditioned modes
-  for (int v = 0; v < m.n_vertices(); ++v)
-    for (int k = 0; k < d; ++k) c[k] += m.vertex(v)[k] / m.n_vertices();
-  const int n_modes = d == 2 ? 3 : 6;
-  std::vector<std::vector<double>> modes(n_modes);
-  for (int mode = 0; mode < n_modes; ++mode) {
-    space.interpolate(
-        [&](const double* X, double* out) {
-          const double x = X[0] - c[0], y = X[1] - c[1], z = d == 3 ? X[2] - c[2] : 0.0;
-          std::fill(out, out + d, 0.0);
-          if (mode < d) {
-            out[mode] = 1;
-          } else if (d == 2) {
-            out[0] = -y, out[1] = x;
-          } else if (mode == 3) {
-            out[1] = -z, out[2] = y;
-          } else if (mode == 4) {
-            out[0] = z, out[2] = -x;
-          } else {
-            out[0] = -y, out[1] = x;
-          }
-        },
-        modes[mode]);
-  }
-  // Modified Gram-Schmidt: MatNullSpaceCreate requires orthonormal vectors.
-  for (int i = 0; i < n_modes; ++i) {
-    for (int j = 0; j < i; ++j) {
-      double dot = 0;
-      for (size_t k = 0; k < modes[i].size(); ++k) dot += modes[i][k] * modes[j][k];
-      for (size_t k = 0; k < modes[i].size(); ++k) modes[i][k] -= dot * modes[j][k];
-    }
-    double nrm = 0;
-    for (double v : modes[i]) nrm += v * v;
-    nrm = std::sqrt(nrm);
-    for (double& v : modes[i]) v /= nrm;
-  }
-  std::vector<Vec> vecs(n_modes);
-  const int n = space.n_dofs() + n_extra;
-  for (int i = 0; i < n_modes; ++i) {
-    modes[i].resize(n, 0.0);
-    STICTION_PETSC(VecCreateMPI(comm, n, n, &vecs[i]));
-    STICTION_PETSC(VecSetBlockSize(vecs[i], space.has_pressure() || n_extra % d ? 1 : d));
-    copy_to_vec(modes[i], vecs[i]);
-  }
-  MatNullSpace nsp;
-  STICTION_PETSC(MatNullSpaceCreate(comm, PETSC_FALSE, n_modes, vecs.data(), &nsp));
-  for (Vec& v : vecs) VecDestroy(&v);
-  return nsp;
-}
-
 // The residual of the augmented system: u rows (the elastic part kept apart: the contact
 // forces are r.u - r.elastic) and constraint rows.
 struct QuasiStaticSolver::Residuals {
   std::vector<double> elastic, u, c;
 };
 
-QuasiStaticSolver::QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& problem, const NewtonSettings& settings,
-                                     LinearSolver& linear)
-    : comm_(comm), problem_(problem), settings_(settings), linear_(linear) {
-  const fem::FieldSpace& space = *problem.space;
-  if (static_cast<int>(problem.cell_material.size()) != space.mesh().n_cells())
+namespace {
+
+const ElasticityProblem& checked(const ElasticityProblem& problem) {
+  if (static_cast<int>(problem.cell_material.size()) != problem.space->mesh().n_cells())
     throw Error("problem: one material per cell expected", ErrorKind::Internal);
-  u_.assign(space.n_dofs(), 0.0);
-  PetscInt n_lambda = 0;
-  for (const auto* c : problem.constraints) {
-    constraint_offset_.push_back(n_lambda);
-    n_lambda += c->n_multipliers();
-  }
-  lambda_.assign(n_lambda, 0.0);
-  system_.comm = comm;
-  system_.block_size = space.has_pressure() ? 1 : space.dim();
-  stiffness_ = std::make_unique<fem::StiffnessMatrix>(comm, space);
-  STICTION_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(stiffness_->mat())));
-  *system_.matrix.out() = stiffness_->mat();  // replaced by the augmented matrix with contact
-  const PetscInt n_total = space.n_dofs() + n_lambda;
-  STICTION_PETSC(VecCreateMPI(comm, n_total, n_total, system_.rhs.out()));
-  auto add_field = [&](const char* name, std::pair<int, int> range, int block_size) {
-    FieldBlock f{name, {}, block_size};
-    STICTION_PETSC(ISCreateStride(comm, range.second - range.first, range.first, 1, f.is.out()));
-    STICTION_PETSC(ISSetBlockSize(f.is, block_size));
-    system_.fields.push_back(std::move(f));
-  };
-  add_field("u_l", space.linear_block(), space.dim());
-  if (fem::is_quadratic(space.kind())) add_field("u_q", space.quadratic_block(), space.dim());
-  if (space.has_pressure()) add_field("p", space.pressure_block(), 1);
-  if (n_lambda > 0) add_field("lambda", {space.n_dofs(), static_cast<int>(n_total)}, space.dim());
-  if (space.has_pressure()) {
-    *system_.pressure_mass.out() = fem::assemble_pressure_mass(comm, space);
-    // alpha of MHP (11) from the (first) mixed law; the paper's scenes have one rubber body.
-    for (const auto* m : problem.cell_material)
-      if (m->mixed_bulk_modulus() > 0) {
-        system_.pressure_schur_scale = m->pressure_schur_scale();
-        break;
-      }
-  }
-  *system_.near_null_space.out() = rigid_body_modes(comm, space, static_cast<int>(n_lambda));
-  STICTION_PETSC(MatSetNearNullSpace(system_.matrix, system_.near_null_space));
-  build_constraints();
+  return problem;
 }
 
-void QuasiStaticSolver::build_constraints() {
-  const fem::FieldSpace& space = *problem_.space;
-  const int d = space.dim();
-  is_constrained_.assign(space.n_dofs(), 0);
-  std::vector<int> nodes(space.nodes_per_facet());
-  for (const auto& bc : problem_.dirichlet) {
-    std::vector<int> bc_nodes;
-    for (int f = 0; f < space.mesh().n_facets(); ++f) {
-      if (space.mesh().facet_tags[f] != bc.facet_tag) continue;
-      space.facet_nodes(f, nodes.data());
-      bc_nodes.insert(bc_nodes.end(), nodes.begin(), nodes.end());
-    }
-    std::sort(bc_nodes.begin(), bc_nodes.end());
-    bc_nodes.erase(std::unique(bc_nodes.begin(), bc_nodes.end()), bc_nodes.end());
-    if (bc_nodes.empty()) throw Error(fmt::format("Dirichlet condition '{}': its boundary has no facets", bc.name));
-    for (int n : bc_nodes)
-      for (int c : bc.components) is_constrained_[static_cast<size_t>(n) * d + c] = 1;
-    bc_nodes_.push_back(std::move(bc_nodes));
-  }
-  for (int i = 0; i < space.n_dofs(); ++i)
-    if (is_constrained_[i]) constrained_.push_back(i);
-}
+}  // namespace
+
+QuasiStaticSolver::QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& problem, const NewtonSettings& settings,
+                                     LinearSolver& linear)
+    : problem_(checked(problem)),
+      settings_(settings),
+      linear_(linear),
+      lifting_(problem),
+      constraints_(problem.constraints),
+      builder_(comm, problem, constraints_.n_multipliers()),
+      u_(problem.space->n_dofs(), 0.0),
+      lambda_(constraints_.n_multipliers(), 0.0) {}
 
 fem::InternalForceStatus QuasiStaticSolver::residual(double t, const std::vector<double>& u,
                                                      std::vector<double>& r) const {
@@ -215,32 +109,8 @@ fem::InternalForceStatus QuasiStaticSolver::evaluate(double t, const std::vector
                                                      const std::vector<double>& lambda, Residuals& r) const {
   const fem::InternalForceStatus status = residual(t, u, r.elastic);
   r.u = r.elastic;
-  r.c.assign(lambda.size(), 0.0);
-  for (size_t k = 0; k < problem_.constraints.size(); ++k)
-    problem_.constraints[k]->evaluate(t, u, lambda.data() + constraint_offset_[k], r.u,
-                                      r.c.data() + constraint_offset_[k], nullptr, 0);
+  constraints_.evaluate(t, u, lambda, r.u, r.c);
   return status;
-}
-
-double QuasiStaticSolver::free_norm(const std::vector<double>& r) const {
-  double s = 0;
-  for (size_t i = 0; i < r.size(); ++i)
-    if (!is_constrained_[i]) s += r[i] * r[i];
-  return std::sqrt(s);
-}
-
-std::map<std::string, std::array<double, 3>> QuasiStaticSolver::reactions(const std::vector<double>& r) const {
-  const fem::FieldSpace& space = *problem_.space;
-  const int d = space.dim();
-  std::map<std::string, std::array<double, 3>> out;
-  for (size_t b = 0; b < problem_.dirichlet.size(); ++b) {
-    std::array<double, 3> f{0, 0, 0};
-    // Total force = sum_i w_i r_i with w the coefficients of the constant 1 (see space).
-    for (int n : bc_nodes_[b])
-      for (int k = 0; k < d; ++k) f[k] += space.unit_weight(n) * r[static_cast<size_t>(n) * d + k];
-    out[problem_.dirichlet[b].name] = f;
-  }
-  return out;
 }
 
 std::map<std::string, std::array<double, 3>> QuasiStaticSolver::surface_forces() const {
@@ -253,120 +123,17 @@ std::map<std::string, std::array<double, 3>> QuasiStaticSolver::surface_forces()
 }
 
 void QuasiStaticSolver::assemble_system(const Residuals& r, bool lift) {
-  const fem::FieldSpace& space = *problem_.space;
-  if (!lambda_.empty()) {
-    // A contact system is a new matrix every iteration: the last one and the solver's
-    // set-up on it are freed first, or they would be held while the next one is built.
-    linear_.release();
-    system_.matrix.reset();
-  }
-  stiffness_->begin_assembly();
-  fem::assemble_internal(space, problem_.cell_material, u_, nullptr, stiffness_.get());
-  stiffness_->end_assembly();
-  if (!lambda_.empty()) {
-    // The augmented matrix (30): the tangent bordered by -B^T, C_u and C_lambda.
-    SparseEntries blocks, mass, surface_stiffness, slip_coupling;
-    std::vector<double> scratch_u(space.n_dofs()), scratch_c(lambda_.size());
-    const PetscInt n_u = space.n_dofs();
-    for (size_t k = 0; k < problem_.constraints.size(); ++k) {
-      problem_.constraints[k]->evaluate(target_time_, u_, lambda_.data() + constraint_offset_[k], scratch_u,
-                                        scratch_c.data() + constraint_offset_[k], &blocks, n_u + constraint_offset_[k]);
-      problem_.constraints[k]->schur_mass(mass, constraint_offset_[k]);
-      problem_.constraints[k]->schur_stiffness(surface_stiffness, constraint_offset_[k]);
-      problem_.constraints[k]->schur_slip_coupling(slip_coupling, constraint_offset_[k]);
-    }
-    *system_.matrix.out() = build_augmented_matrix(system_.comm, stiffness_->take_arrays(),
-                                                   static_cast<PetscInt>(lambda_.size()), blocks, stiffness_->block_size());
-    STICTION_PETSC(MatSetNearNullSpace(system_.matrix, system_.near_null_space));
-    *system_.multiplier_schur_mass.out() =
-        build_sparse_matrix(system_.comm, static_cast<PetscInt>(lambda_.size()), mass);
-    *system_.multiplier_schur_stiffness.out() =
-        build_sparse_matrix(system_.comm, static_cast<PetscInt>(lambda_.size()), surface_stiffness);
-    *system_.multiplier_schur_slip.out() =
-        build_sparse_matrix(system_.comm, static_cast<PetscInt>(lambda_.size()), slip_coupling);
-  }
-  std::vector<double> b(r.u.size() + r.c.size());
-  for (size_t i = 0; i < r.u.size(); ++i) b[i] = -r.u[i];
-  for (size_t i = 0; i < r.c.size(); ++i) b[r.u.size() + i] = -r.c[i];
-  copy_to_vec(b, system_.rhs);
-  // Constrained rows and columns become identity; the right side takes the prescribed
-  // increment on them and, through the removed columns, its effect on the free rows.
-  PetscVec x;
-  STICTION_PETSC(VecDuplicate(system_.rhs, x.out()));
-  STICTION_PETSC(VecZeroEntries(x));
-  if (lift)
-    for (size_t k = 0; k < constrained_.size(); ++k)
-      STICTION_PETSC(VecSetValue(x, constrained_[k], target_[k] - u_[constrained_[k]], INSERT_VALUES));
-  STICTION_PETSC(VecAssemblyBegin(x));
-  STICTION_PETSC(VecAssemblyEnd(x));
-  STICTION_PETSC(MatZeroRowsColumns(system_.matrix, static_cast<PetscInt>(constrained_.size()), constrained_.data(),
-                                    1.0, x, system_.rhs));
-}
-
-int QuasiStaticSolver::update_constraint_states(double t, const std::vector<double>& dlambda) {
-  int changes = 0;
-  for (size_t k = 0; k < problem_.constraints.size(); ++k)
-    changes += problem_.constraints[k]->update_states(t, u_, lambda_.data() + constraint_offset_[k],
-                                                      dlambda.data() + constraint_offset_[k]);
-  return changes;
-}
-
-void QuasiStaticSolver::evaluate_constraint_rows(double t, Residuals& r) const {
-  r.c.assign(lambda_.size(), 0.0);
-  for (size_t k = 0; k < problem_.constraints.size(); ++k)
-    problem_.constraints[k]->evaluate_rows(t, u_, lambda_.data() + constraint_offset_[k],
-                                           r.c.data() + constraint_offset_[k]);
+  // A contact system is a new matrix every iteration: the solver's set-up on the last one
+  // is freed first, or it would be held while the next one is built.
+  if (!constraints_.empty()) linear_.release();
+  builder_.assemble(target_time_, u_, lambda_, r.u, r.c, constraints_, lifting_, lift);
 }
 
 void QuasiStaticSolver::report_state_changes(int step, int iteration, double t, const std::vector<char>& before) const {
-  size_t first = 0;
-  for (size_t k = 0; k < problem_.constraints.size(); ++k) {
-    const auto* c = problem_.constraints[k];
-    const std::vector<char> now = c->states();
-    std::vector<MultiplierNode> nodes;
-    for (size_t i = 0; i < now.size(); ++i) {
-      if (now[i] == before[first + i]) continue;
-      if (nodes.empty()) nodes = c->nodes(t, u_, lambda_.data() + constraint_offset_[k]);
-      state_observer_({step, iteration, c->name(), static_cast<int>(i), before[first + i], nodes[i]});
-    }
-    first += now.size();
-  }
-}
-
-std::vector<char> QuasiStaticSolver::constraint_states() const {
-  std::vector<char> all;
-  for (const auto* c : problem_.constraints) {
-    const auto s = c->states();
-    all.insert(all.end(), s.begin(), s.end());
-  }
-  return all;
-}
-
-void QuasiStaticSolver::set_step_targets(double t) {
-  const fem::FieldSpace& space = *problem_.space;
-  const int d = space.dim();
-  // Prescribed values of this step on every constrained dof (last condition wins).
-  std::vector<double> full_target(space.n_dofs(), 0.0);
-  for (size_t b = 0; b < problem_.dirichlet.size(); ++b) {
-    const auto& bc = problem_.dirichlet[b];
-    double val[3];
-    for (int n : bc_nodes_[b]) {
-      space.interpolate_node([&](const double* X, double* out) { bc.value(X, t, out); }, n, val);
-      for (int c : bc.components) full_target[static_cast<size_t>(n) * d + c] = val[c];
-    }
-  }
-  target_.resize(constrained_.size());
-  for (size_t k = 0; k < constrained_.size(); ++k) target_[k] = full_target[constrained_[k]];
-}
-
-double QuasiStaticSolver::lifted_rhs_free_norm() const {
-  // The lifted system's right side without its prescribed rows.
-  std::vector<double> b(problem_.space->n_dofs());
-  const PetscScalar* a;
-  STICTION_PETSC(VecGetArrayRead(system_.rhs, &a));
-  std::copy(a, a + b.size(), b.begin());
-  STICTION_PETSC(VecRestoreArrayRead(system_.rhs, &a));
-  return free_norm(b);
+  constraints_.visit_changes(before, t, u_, lambda_,
+                             [&](const MultiplierConstraint& c, int node, char was, const MultiplierNode& now) {
+                               state_observer_({step, iteration, c.name(), node, was, now});
+                             });
 }
 
 void QuasiStaticSolver::split_update(Vec du, std::vector<double>& dv, std::vector<double>& dl) const {
@@ -388,11 +155,11 @@ QuasiStaticSolver::TrialStep QuasiStaticSolver::take_step(double t_target, const
     for (size_t i = 0; i < dv.size(); ++i) trial[i] += t.alpha * dv[i];
     for (size_t i = 0; i < dl.size(); ++i) trial_lambda[i] += t.alpha * dl[i];
     if (t.alpha == 1)
-      for (size_t k = 0; k < constrained_.size(); ++k) trial[constrained_[k]] = target_[k];  // exact, free of round-off
+      lifting_.impose(trial);  // exact, free of round-off
     const auto t0 = std::chrono::steady_clock::now();
     const auto st = evaluate(t_target, trial, trial_lambda, rt);
     t.assembly_seconds += seconds_since(t0);
-    const double norm = std::hypot(free_norm(rt.u), l2_norm(rt.c));
+    const double norm = std::hypot(lifting_.free_norm(rt.u), l2_norm(rt.c));
     t.folded_cell = st.folded_cell;
     if (st.inverted_cell < 0 && std::isfinite(norm)) break;
     if (bt == settings_.max_backtracks) {
@@ -411,7 +178,50 @@ QuasiStaticSolver::TrialStep QuasiStaticSolver::take_step(double t_target, const
 double QuasiStaticSolver::contact_force_norm(const Residuals& r) const {
   std::vector<double> contact_force(r.u.size());
   for (size_t i = 0; i < r.u.size(); ++i) contact_force[i] = r.u[i] - r.elastic[i];
-  return free_norm(contact_force);
+  return lifting_.free_norm(contact_force);
+}
+
+// Predictor (choice): while some node is in contact, the first solve of a step keeps the
+// previous step's states, so the contact rows carry the master's motion into the body and
+// only the nodes at the edge of the contact zone change afterwards. Re-evaluating the states
+// on the initial iterate instead (the body not yet moved) activates every node the master's
+// rigid motion overlaps; PDAS then releases them one or two per iteration. Measured on
+// hertz-cylinder-2d level 1 with 8 load steps, lu-mumps: steps 2-8 took 9, 8, 8, 7, 6, 7, 6
+// iterations that way. With no node in contact each pair takes its first states from the
+// penetrations of the initial iterate (the deepest part of the overlap:
+// ContactPair::entry_depth).
+int QuasiStaticSolver::first_states(int step, double t, Residuals& r) {
+  if (!constraints_.all_free()) return 0;
+  const std::vector<char> before = constraints_.states();
+  const int changes = constraints_.update_states(t, u_, lambda_, std::vector<double>(lambda_.size(), 0.0));
+  if (changes > 0) constraints_.evaluate_rows(t, u_, lambda_, r.c);
+  if (changes > 0 && state_observer_) report_state_changes(step, 0, t, before);
+  return changes;
+}
+
+QuasiStaticSolver::StateUpdate QuasiStaticSolver::update_states(int step, int iteration, double t,
+                                                                const std::vector<double>& dl, double reference,
+                                                                double c_reference, ActiveSetMonitor& monitor,
+                                                                Residuals& r) {
+  StateUpdate out;
+  const double r_free = lifting_.free_norm(r.u), r_c = l2_norm(r.c);
+  const bool converged_now = r_free <= std::max(settings_.atol, settings_.rtol * reference) &&
+                             r_c <= std::max(settings_.atol, settings_.rtol * c_reference);
+  const double progress = std::max(r_free / reference, r_c / std::max(c_reference, settings_.atol));
+  out.checked = monitor.may_update(progress, converged_now);
+  if (!out.checked) {
+    constraints_.states_held(lambda_, dl);
+    return out;
+  }
+  const std::vector<char> before = constraints_.states();
+  out.changes = constraints_.update_states(t, u_, lambda_, dl);
+  if (out.changes > 0) {
+    if (state_observer_) report_state_changes(step, iteration, t, before);
+    constraints_.evaluate_rows(t, u_, lambda_, r.c);
+    out.verdict =
+        monitor.after_update(before, constraints_.states(), r_free + r_c, lifting_.free_norm(r.u) + l2_norm(r.c));
+  }
+  return out;
 }
 
 StepResult QuasiStaticSolver::solve_step(int step) {
@@ -433,13 +243,8 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
   res.step = step;
   res.time = t;
   target_time_ = t;
-  for (auto* c : problem_.constraints) c->begin_increment(time_, u_);
-  set_step_targets(t);
-  auto lift_pending = [&] {
-    for (size_t k = 0; k < constrained_.size(); ++k)
-      if (u_[constrained_[k]] != target_[k]) return true;
-    return false;
-  };
+  constraints_.begin_increment(time_, u_);
+  lifting_.set_targets(t);
 
   Residuals r, rt;
   auto t0 = std::chrono::steady_clock::now();
@@ -459,16 +264,15 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
   // the increment fails and is cut (before, such a state was converged to at t = 1.49, and
   // Newton stalled in the next step on the contact projections of the looped facet).
   int folded_cell = -1;
-  double rnorm = free_norm(r.u), cnorm = l2_norm(r.c), c_reference = cnorm;
+  double rnorm = lifting_.free_norm(r.u), cnorm = l2_norm(r.c), c_reference = cnorm;
   res.initial_residual = res.reference_residual = res.final_residual = rnorm;
   auto finish = [&](NewtonReason why) {
     res.reason = why;
     res.final_residual = rnorm;
     if (res.converged()) {
-      res.reactions = reactions(r.u);
+      res.reactions = lifting_.reactions(r.u);
       res.surface_forces = surface_forces();
-      for (size_t k = 0; k < problem_.constraints.size(); ++k)
-        res.contact.push_back(problem_.constraints[k]->summary(lambda_.data() + constraint_offset_[k]));
+      res.contact = constraints_.summaries(lambda_);
     }
     res.wall_seconds = seconds_since(t_step);
     return res;
@@ -477,33 +281,19 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
   int last_changes = 0;
   bool states_checked = true;  // the states were tested at the current iterate
   if (!lambda_.empty()) {
-    // Predictor (choice): while some node is in contact, the first solve of a step keeps the
-    // previous step's states, so the contact rows carry the master's motion into the body
-    // and only the nodes at the edge of the contact zone change afterwards. Re-evaluating
-    // the states on the initial iterate instead (the body not yet moved) activates every
-    // node the master's rigid motion overlaps; PDAS then releases them one or two per
-    // iteration. Measured on hertz-cylinder-2d level 1 with 8 load steps, lu-mumps: steps
-    // 2-8 took 9, 8, 8, 7, 6, 7, 6 iterations that way. With no node in contact each pair
-    // takes its first states from the penetrations of the initial iterate (the deepest
-    // part of the overlap: ContactPair::entry_depth).
-    const std::vector<char> states = constraint_states();
-    if (std::all_of(states.begin(), states.end(), [](char c) { return c == MultiplierConstraint::kFreeState; })) {
-      last_changes = update_constraint_states(t, std::vector<double>(lambda_.size(), 0.0));
-      if (last_changes > 0) evaluate_constraint_rows(t, r);
-      if (last_changes > 0 && state_observer_) report_state_changes(step, 0, t, states);
-    }
+    last_changes = first_states(step, t, r);
     cnorm = c_reference = l2_norm(r.c);
   }
 
   PetscVec du;
-  STICTION_PETSC(VecDuplicate(system_.rhs, du.out()));
+  STICTION_PETSC(VecDuplicate(builder_.system().rhs, du.out()));
   // Eisenstat-Walker reads the norm of the whole right side of each Newton system (the
   // residual the Krylov tolerance is relative to): with contact, a load carried by the
   // constraints (a moving ground) leaves the displacement residual at zero at the first
   // iterate, and a ratio of displacement residuals would then stay infinite.
   double eta = 0, rhs_prev = 0;
   for (int it = 0;; ++it) {
-    const bool pending = lift_pending();
+    const bool pending = lifting_.pending(u_);
     const double tol = std::max(settings_.atol, settings_.rtol * res.reference_residual);
     const bool constraints_ok =
         states_checked && last_changes == 0 && cnorm <= std::max(settings_.atol, settings_.rtol * c_reference);
@@ -530,12 +320,12 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
     t0 = std::chrono::steady_clock::now();
     assemble_system(r, pending);
     rec.assembly_seconds = asm_seconds + seconds_since(t0);
-    if (it == 0) res.reference_residual = std::max(rnorm, lifted_rhs_free_norm());
+    if (it == 0) res.reference_residual = std::max(rnorm, lifting_.free_norm(builder_.system().rhs));
 
-    linear_.setup(system_);
+    linear_.setup(builder_.system());
     if (settings_.forcing == Forcing::EisenstatWalker) {
       PetscReal rhs_norm;
-      STICTION_PETSC(VecNorm(system_.rhs, NORM_2, &rhs_norm));
+      STICTION_PETSC(VecNorm(builder_.system().rhs, NORM_2, &rhs_norm));
       eta = next_forcing_term(eta, rhs_norm, rhs_prev, rnorm,
                               std::max(settings_.atol, settings_.rtol * res.reference_residual), it == 0);
       rhs_prev = rhs_norm;
@@ -548,8 +338,8 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
     } else if (settings_.krylov_rtol > 0) {
       linear_.set_relative_tolerance(settings_.krylov_rtol);
     }
-    rec.linear = linear_.solve(system_, du);
-    if (observer_) observer_(system_, du, rec.linear, step, it + 1);
+    rec.linear = linear_.solve(builder_.system(), du);
+    if (observer_) observer_(builder_.system(), du, rec.linear, step, it + 1);
     if (!rec.linear.converged && !usable_direction(rec.linear)) {
       res.iterations.push_back(rec);
       res.detail = fmt::format("linear solver {} stopped with {}", linear_.name(), rec.linear.reason);
@@ -572,29 +362,15 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
     r = std::move(rt);
     ActiveSetMonitor::Verdict verdict = ActiveSetMonitor::Verdict::Continue;
     if (!lambda_.empty()) {
-      const double r_free = free_norm(r.u), r_c = l2_norm(r.c);
-      const bool converged_now = r_free <= std::max(settings_.atol, settings_.rtol * res.reference_residual) &&
-                                 r_c <= std::max(settings_.atol, settings_.rtol * c_reference);
-      const double progress = std::max(r_free / res.reference_residual, r_c / std::max(c_reference, settings_.atol));
-      states_checked = monitor.may_update(progress, converged_now);
-      last_changes = 0;
-      if (!states_checked) {
-        for (size_t k = 0; k < problem_.constraints.size(); ++k)
-          problem_.constraints[k]->states_held(lambda_.data() + constraint_offset_[k], dl.data() + constraint_offset_[k]);
-      } else {
-        const std::vector<char> before = constraint_states();
-        last_changes = update_constraint_states(t, dl);
-        if (last_changes > 0) {
-          if (state_observer_) report_state_changes(step, it + 1, t, before);
-          evaluate_constraint_rows(t, r);
-          verdict = monitor.after_update(before, constraint_states(), r_free + r_c, free_norm(r.u) + l2_norm(r.c));
-        }
-      }
+      const StateUpdate update = update_states(step, it + 1, t, dl, res.reference_residual, c_reference, monitor, r);
+      states_checked = update.checked;
+      last_changes = update.changes;
+      verdict = update.verdict;
       c_reference = std::max(c_reference, l2_norm(r.c));
       // Contact carries the load of a displacement-driven master: its forces set the scale.
       res.reference_residual = std::max(res.reference_residual, contact_force_norm(r));
     }
-    rnorm = free_norm(r.u);
+    rnorm = lifting_.free_norm(r.u);
     cnorm = l2_norm(r.c);
     rec.residual = rnorm;
     rec.constraint_residual = cnorm;
@@ -617,21 +393,21 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
 
 QuasiStaticSolver::State QuasiStaticSolver::state() const {
   State s{completed_step_, time_, u_, lambda_, {}};
-  for (const auto* c : problem_.constraints) s.constraints.push_back(c->save_state());
+  s.constraints = constraints_.save_state();
   return s;
 }
 
 void QuasiStaticSolver::restore(const State& s) {
   if (s.u.size() != u_.size() || s.lambda.size() != lambda_.size() ||
-      s.constraints.size() != problem_.constraints.size())
+      s.constraints.size() != constraints_.size())
     throw Error(fmt::format("a saved state of {} displacement unknowns, {} multipliers and {} constraints does not fit "
                             "this problem ({}, {}, {})",
                             s.u.size(), s.lambda.size(), s.constraints.size(), u_.size(), lambda_.size(),
-                            problem_.constraints.size()));
+                            constraints_.size()));
   if (s.step < 0 || s.step > problem_.n_steps())
     throw Error(fmt::format("a saved state at load step {} does not fit a problem of {} steps", s.step,
                             problem_.n_steps()));
-  for (size_t k = 0; k < problem_.constraints.size(); ++k) problem_.constraints[k]->restore_state(s.constraints[k]);
+  constraints_.restore_state(s.constraints);
   u_ = s.u;
   lambda_ = s.lambda;
   time_ = s.time;

@@ -1,10 +1,9 @@
 #pragma once
 // Quasi-static load stepping with Newton's method on the hyperelastic residual.
 //
-// Dirichlet values enter through the first linear system of each step (lifting): the
-// increment on constrained dofs is prescribed, the matrix keeps its symmetry
-// (MatZeroRowsColumns), so the predictor is the linearised response to the new boundary
-// values instead of a jump that can invert boundary cells.
+// Its parts: the Dirichlet lifting (dirichlet_lifting.hpp), the constraints' multiplier block
+// (constraint_set.hpp), the system each iteration hands to the backend (system_builder.hpp)
+// and the gate on contact-state updates (active_set_monitor.hpp); this file is the loop.
 //
 // Convergence: ||r_free|| <= max(atol, rtol * r_ref), where r_ref is the larger of the
 // step's initial free residual and the right side of its first (lifted) system, i.e. the
@@ -34,8 +33,11 @@
 
 #include "fem/elasticity_assembly.hpp"
 #include "nonlinear/active_set_monitor.hpp"
+#include "nonlinear/constraint_set.hpp"
+#include "nonlinear/dirichlet_lifting.hpp"
 #include "nonlinear/linear_solver.hpp"
 #include "nonlinear/problem.hpp"
+#include "nonlinear/system_builder.hpp"
 
 namespace stiction::nonlinear {
 
@@ -147,7 +149,7 @@ public:
   // Full residual r(u) = f_int - f_ext at pseudo-time t (constrained rows included), and status.
   fem::InternalForceStatus residual(double t, const std::vector<double>& u, std::vector<double>& r) const;
   // The last assembled Newton system (for record/replay and tests).
-  const NewtonSystem& system() const { return system_; }
+  const NewtonSystem& system() const { return builder_.system(); }
   // Called after every linear solve with the system, the increment found and its figures
   // (record/replay hooks in here).
   using SystemObserver =
@@ -167,22 +169,28 @@ public:
 
 private:
   struct Residuals;
-  void build_constraints();
-  void assemble_system(const Residuals& r, bool lift);
   // Elastic part and constraint part of the residual at (u, lambda).
   fem::InternalForceStatus evaluate(double t, const std::vector<double>& u, const std::vector<double>& lambda,
                                     Residuals& r) const;
-  int update_constraint_states(double t, const std::vector<double>& dlambda);
-  // The constraint rows r.c at (u_, lambda_) for the states just updated there; r.u, the
-  // forces on the displacement equations, does not depend on the states.
-  void evaluate_constraint_rows(double t, Residuals& r) const;
+  // The system at the current iterate for its residual r (the backend's old set-up released first).
+  void assemble_system(const Residuals& r, bool lift);
+  // The step predictor's states when no node is in contact (see solve_increment).
+  int first_states(int step, double t, Residuals& r);
+  // After an accepted Newton update dl: the contact states, when the monitor lets them
+  // change, and the constraint rows of r for the new states; returns the monitor's verdict.
+  struct StateUpdate {
+    bool checked = true;  // the states were tested at this iterate
+    int changes = 0;
+    ActiveSetMonitor::Verdict verdict = ActiveSetMonitor::Verdict::Continue;
+  };
+  StateUpdate update_states(int step, int iteration, double t, const std::vector<double>& dl, double reference,
+                            double c_reference, ActiveSetMonitor& monitor, Residuals& r);
   static bool retry_allowed(const StepResult& failed, bool linear_failure_retried, const LinearTally& tally);
   static constexpr double kSporadicLinearFailures = 0.02;  // retry_allowed
   static constexpr double kUsableForcingFactor = 10;  // usable_direction
   static bool usable_direction(const LinearSolveStats& s);
   void report_state_changes(int step, int iteration, double t, const std::vector<char>& before) const;
-  // Pieces of solve_increment: the increment's prescribed values (target_), the norm of the lifted
-  // right side's free rows, the split of a Newton update into u (and p) and multipliers,
+  // Pieces of solve_increment: the split of a Newton update into u (and p) and multipliers,
   // the backtracked step (u_ and lambda_ move only when it succeeds), and the norm of the
   // constraint forces in a residual.
   struct TrialStep {
@@ -193,41 +201,26 @@ private:
     bool failed = false;
     NewtonReason failure = NewtonReason::DivergedNaN;  // when failed
   };
-  void set_step_targets(double t);
-  double lifted_rhs_free_norm() const;
   void split_update(Vec du, std::vector<double>& dv, std::vector<double>& dl) const;
   TrialStep take_step(double t, const std::vector<double>& dv, const std::vector<double>& dl, Residuals& rt);
   double contact_force_norm(const Residuals& r) const;
-  std::vector<char> constraint_states() const;
   std::string describe_cell(int c) const { return mesh::describe_cell(problem_.space->mesh(), c); }
-  double free_norm(const std::vector<double>& r) const;
-  std::map<std::string, std::array<double, 3>> reactions(const std::vector<double>& r) const;
   std::map<std::string, std::array<double, 3>> surface_forces() const;
 
-  MPI_Comm comm_;
   const ElasticityProblem& problem_;
   NewtonSettings settings_;
   LinearSolver& linear_;
+  DirichletLifting lifting_;
+  ConstraintSet constraints_;
+  NewtonSystemBuilder builder_;
   std::vector<double> u_;
-  std::vector<double> lambda_;                // contact multipliers (augmented unknowns n_u..)
-  std::vector<PetscInt> constraint_offset_;   // first multiplier of each constraint in lambda_
-  std::unique_ptr<fem::StiffnessMatrix> stiffness_;
-  NewtonSystem system_;  // its matrix: stiffness_'s, or with contact the augmented matrix built from it
-  std::vector<PetscInt> constrained_;         // sorted constrained dofs
-  std::vector<char> is_constrained_;          // per dof
+  std::vector<double> lambda_;  // contact multipliers (augmented unknowns n_u..)
   LinearTally tally_;
-  std::vector<std::vector<int>> bc_nodes_;    // per Dirichlet condition
-  std::vector<double> target_;                // prescribed values, per constrained dof (this increment)
-  double time_ = 0;                           // pseudo-time of the current converged state
-  double target_time_ = 0;                    // pseudo-time of the increment being solved
-  int completed_step_ = 0;                    // the last load step completed
+  double time_ = 0;             // pseudo-time of the current converged state
+  double target_time_ = 0;      // pseudo-time of the increment being solved
+  int completed_step_ = 0;      // the last load step completed
   SystemObserver observer_;
   StateChangeObserver state_observer_;
 };
-
-// Rigid-body modes of the space (translations, rotations about the origin) interpolated in
-// its basis and orthonormalised: the near-null space handed to AMG.
-// n_extra zero entries follow (the multipliers of a contact system).
-MatNullSpace rigid_body_modes(MPI_Comm comm, const fem::FieldSpace& space, int n_extra = 0);
 
 }  // namespace stiction::nonlinear

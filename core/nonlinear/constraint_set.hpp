@@ -1,0 +1,59 @@
+#pragma once
+// The problem's multiplier constraints as one block of the Newton system: multiplier k of
+// constraint c is unknown n_u + offset(c) + k (the multipliers follow the displacement and
+// pressure unknowns, (30)), and every call on the set reaches each constraint with its slice
+// of the multipliers. The Newton driver and the system builder see the set, not the
+// constraints one by one.
+#include <functional>
+#include <vector>
+
+#include "nonlinear/multiplier_constraint.hpp"
+
+namespace stiction::nonlinear {
+
+class ConstraintSet {
+public:
+  explicit ConstraintSet(const std::vector<MultiplierConstraint*>& constraints);
+
+  bool empty() const { return n_multipliers_ == 0; }
+  PetscInt n_multipliers() const { return n_multipliers_; }
+  size_t size() const { return constraints_.size(); }
+
+  void begin_increment(double t_start, const std::vector<double>& u);
+  // r_u -= B^T lambda; r_c (resized to n_multipliers) the rows of the current states; with
+  // jacobian, the blocks of (30) in the augmented numbering of a system with n_u unknowns
+  // before the multipliers.
+  void evaluate(double t, const std::vector<double>& u, const std::vector<double>& lambda, std::vector<double>& r_u,
+                std::vector<double>& r_c, SparseEntries* jacobian = nullptr, PetscInt n_u = 0) const;
+  // r_c alone, for states just updated at an iterate already evaluated.
+  void evaluate_rows(double t, const std::vector<double>& u, const std::vector<double>& lambda,
+                     std::vector<double>& r_c) const;
+  // The state machine (Sec. 4.5) after a Newton update dlambda; returns the changes.
+  int update_states(double t, const std::vector<double>& u, const std::vector<double>& lambda,
+                    const std::vector<double>& dlambda);
+  void states_held(const std::vector<double>& lambda, const std::vector<double>& dlambda);
+  // Every constraint's states, concatenated in order.
+  std::vector<char> states() const;
+  bool all_free() const;
+  // The Schur approximation's parts (32) on the multiplier block's numbering [0, m).
+  void schur_parts(SparseEntries& mass, SparseEntries& surface_stiffness, SparseEntries& slip_coupling) const;
+
+  std::vector<ConstraintSummary> summaries(const std::vector<double>& lambda) const;
+  std::vector<std::vector<double>> save_state() const;
+  void restore_state(const std::vector<std::vector<double>>& saved);
+
+  // Calls changed(constraint, node within it, state before, node now) for every node whose
+  // state differs from `before` (states() of an earlier moment).
+  using ChangeVisitor = std::function<void(const MultiplierConstraint&, int, char, const MultiplierNode&)>;
+  void visit_changes(const std::vector<char>& before, double t, const std::vector<double>& u,
+                     const std::vector<double>& lambda, const ChangeVisitor& changed) const;
+
+  const std::vector<MultiplierConstraint*>& constraints() const { return constraints_; }
+
+private:
+  std::vector<MultiplierConstraint*> constraints_;
+  std::vector<PetscInt> offset_;  // first multiplier of each constraint
+  PetscInt n_multipliers_ = 0;
+};
+
+}  // namespace stiction::nonlinear

@@ -1,0 +1,141 @@
+#include "nonlinear/system_builder.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "fem/elasticity_assembly.hpp"
+#include "nonlinear/augmented_matrix.hpp"
+
+namespace stiction::nonlinear {
+
+namespace {
+
+void copy_to_vec(const std::vector<double>& src, Vec dst) {
+  PetscScalar* a;
+  STICTION_PETSC(VecGetArray(dst, &a));
+  std::copy(src.begin(), src.end(), a);
+  STICTION_PETSC(VecRestoreArray(dst, &a));
+}
+
+}  // namespace
+
+MatNullSpace rigid_body_modes(MPI_Comm comm, const fem::FieldSpace& space, int n_extra) {
+  const int d = space.dim();
+  const mesh::Mesh& m = space.mesh();
+  double c[3] = {0, 0, 0};  // rotate about the centroid: better-conditioned modes
+  for (int v = 0; v < m.n_vertices(); ++v)
+    for (int k = 0; k < d; ++k) c[k] += m.vertex(v)[k] / m.n_vertices();
+  const int n_modes = d == 2 ? 3 : 6;
+  std::vector<std::vector<double>> modes(n_modes);
+  for (int mode = 0; mode < n_modes; ++mode) {
+    space.interpolate(
+        [&](const double* X, double* out) {
+          const double x = X[0] - c[0], y = X[1] - c[1], z = d == 3 ? X[2] - c[2] : 0.0;
+          std::fill(out, out + d, 0.0);
+          if (mode < d) {
+            out[mode] = 1;
+          } else if (d == 2) {
+            out[0] = -y, out[1] = x;
+          } else if (mode == 3) {
+            out[1] = -z, out[2] = y;
+          } else if (mode == 4) {
+            out[0] = z, out[2] = -x;
+          } else {
+            out[0] = -y, out[1] = x;
+          }
+        },
+        modes[mode]);
+  }
+  // Modified Gram-Schmidt: MatNullSpaceCreate requires orthonormal vectors.
+  for (int i = 0; i < n_modes; ++i) {
+    for (int j = 0; j < i; ++j) {
+      double dot = 0;
+      for (size_t k = 0; k < modes[i].size(); ++k) dot += modes[i][k] * modes[j][k];
+      for (size_t k = 0; k < modes[i].size(); ++k) modes[i][k] -= dot * modes[j][k];
+    }
+    double nrm = 0;
+    for (double v : modes[i]) nrm += v * v;
+    nrm = std::sqrt(nrm);
+    for (double& v : modes[i]) v /= nrm;
+  }
+  std::vector<Vec> vecs(n_modes);
+  const int n = space.n_dofs() + n_extra;
+  for (int i = 0; i < n_modes; ++i) {
+    modes[i].resize(n, 0.0);
+    STICTION_PETSC(VecCreateMPI(comm, n, n, &vecs[i]));
+    STICTION_PETSC(VecSetBlockSize(vecs[i], space.has_pressure() || n_extra % d ? 1 : d));
+    copy_to_vec(modes[i], vecs[i]);
+  }
+  MatNullSpace nsp;
+  STICTION_PETSC(MatNullSpaceCreate(comm, PETSC_FALSE, n_modes, vecs.data(), &nsp));
+  for (Vec& v : vecs) VecDestroy(&v);
+  return nsp;
+}
+
+NewtonSystemBuilder::NewtonSystemBuilder(MPI_Comm comm, const ElasticityProblem& problem, PetscInt n_multipliers)
+    : problem_(problem) {
+  const fem::FieldSpace& space = *problem.space;
+  system_.comm = comm;
+  system_.block_size = space.has_pressure() ? 1 : space.dim();
+  stiffness_ = std::make_unique<fem::StiffnessMatrix>(comm, space);
+  STICTION_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(stiffness_->mat())));
+  *system_.matrix.out() = stiffness_->mat();  // replaced by the augmented matrix with contact
+  const PetscInt n_total = space.n_dofs() + n_multipliers;
+  STICTION_PETSC(VecCreateMPI(comm, n_total, n_total, system_.rhs.out()));
+  add_field("u_l", space.linear_block(), space.dim());
+  if (fem::is_quadratic(space.kind())) add_field("u_q", space.quadratic_block(), space.dim());
+  if (space.has_pressure()) add_field("p", space.pressure_block(), 1);
+  if (n_multipliers > 0) add_field("lambda", {space.n_dofs(), static_cast<int>(n_total)}, space.dim());
+  if (space.has_pressure()) {
+    *system_.pressure_mass.out() = fem::assemble_pressure_mass(comm, space);
+    // alpha of MHP (11) from the (first) mixed law; the paper's scenes have one rubber body.
+    for (const auto* m : problem.cell_material)
+      if (m->mixed_bulk_modulus() > 0) {
+        system_.pressure_schur_scale = m->pressure_schur_scale();
+        break;
+      }
+  }
+  *system_.near_null_space.out() = rigid_body_modes(comm, space, static_cast<int>(n_multipliers));
+  STICTION_PETSC(MatSetNearNullSpace(system_.matrix, system_.near_null_space));
+}
+
+void NewtonSystemBuilder::add_field(const char* name, std::pair<int, int> range, int block_size) {
+  FieldBlock f{name, {}, block_size};
+  STICTION_PETSC(ISCreateStride(system_.comm, range.second - range.first, range.first, 1, f.is.out()));
+  STICTION_PETSC(ISSetBlockSize(f.is, block_size));
+  system_.fields.push_back(std::move(f));
+}
+
+void NewtonSystemBuilder::assemble(double t, const std::vector<double>& u, const std::vector<double>& lambda,
+                                   const std::vector<double>& r_u, const std::vector<double>& r_c,
+                                   const ConstraintSet& constraints, const DirichletLifting& lifting, bool lift) {
+  if (!constraints.empty()) system_.matrix.reset();  // the caller released the backend's set-up on it
+  stiffness_->begin_assembly();
+  fem::assemble_internal(*problem_.space, problem_.cell_material, u, nullptr, stiffness_.get());
+  stiffness_->end_assembly();
+  if (!constraints.empty()) border_with_constraints(t, u, lambda, constraints);
+  std::vector<double> b(r_u.size() + r_c.size());
+  for (size_t i = 0; i < r_u.size(); ++i) b[i] = -r_u[i];
+  for (size_t i = 0; i < r_c.size(); ++i) b[r_u.size() + i] = -r_c[i];
+  copy_to_vec(b, system_.rhs);
+  lifting.apply(system_.matrix, system_.rhs, u, lift);
+}
+
+// The augmented matrix (30): the tangent bordered by -B^T, C_u and C_lambda, and the
+// multiplier block's Schur parts (32).
+void NewtonSystemBuilder::border_with_constraints(double t, const std::vector<double>& u,
+                                                  const std::vector<double>& lambda, const ConstraintSet& constraints) {
+  const PetscInt n_u = problem_.space->n_dofs(), m = constraints.n_multipliers();
+  SparseEntries blocks, mass, surface_stiffness, slip_coupling;
+  std::vector<double> scratch_u(n_u), scratch_c;
+  constraints.evaluate(t, u, lambda, scratch_u, scratch_c, &blocks, n_u);
+  constraints.schur_parts(mass, surface_stiffness, slip_coupling);
+  *system_.matrix.out() = build_augmented_matrix(system_.comm, stiffness_->take_arrays(), m, blocks,
+                                                 stiffness_->block_size());
+  STICTION_PETSC(MatSetNearNullSpace(system_.matrix, system_.near_null_space));
+  *system_.multiplier_schur_mass.out() = build_sparse_matrix(system_.comm, m, mass);
+  *system_.multiplier_schur_stiffness.out() = build_sparse_matrix(system_.comm, m, surface_stiffness);
+  *system_.multiplier_schur_slip.out() = build_sparse_matrix(system_.comm, m, slip_coupling);
+}
+
+}  // namespace stiction::nonlinear

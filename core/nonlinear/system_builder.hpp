@@ -1,0 +1,49 @@
+#pragma once
+// Writes each Newton system the backends solve: the tangent of the elastic residual, with
+// contact bordered into the augmented matrix (30), the right side -(r_u, r_c), the
+// Dirichlet lifting, the field index sets (u_l, u_q, p, lambda), the rigid-body near-null
+// space and, for the preconditioners that use them, the pressure mass matrix with alpha of
+// MHP (11) and the parts of the multiplier Schur approximation (32).
+//
+// Without contact the tangent keeps one matrix over its pattern for the whole run; with
+// contact each system is a new matrix (the constraint blocks change pattern with the
+// states), so the caller releases the backend's set-up on the old one before assemble().
+#include <memory>
+#include <vector>
+
+#include "fem/stiffness_matrix.hpp"
+#include "nonlinear/constraint_set.hpp"
+#include "nonlinear/dirichlet_lifting.hpp"
+#include "nonlinear/newton_system.hpp"
+#include "nonlinear/problem.hpp"
+
+namespace stiction::nonlinear {
+
+class NewtonSystemBuilder {
+public:
+  NewtonSystemBuilder(MPI_Comm comm, const ElasticityProblem& problem, PetscInt n_multipliers);
+
+  // The system at (u, lambda) at pseudo-time t for the residual (r_u, r_c) there; with lift,
+  // the constrained dofs' increment to the lifting's targets enters it.
+  void assemble(double t, const std::vector<double>& u, const std::vector<double>& lambda,
+                const std::vector<double>& r_u, const std::vector<double>& r_c, const ConstraintSet& constraints,
+                const DirichletLifting& lifting, bool lift);
+
+  const NewtonSystem& system() const { return system_; }
+
+private:
+  void add_field(const char* name, std::pair<int, int> range, int block_size);
+  void border_with_constraints(double t, const std::vector<double>& u, const std::vector<double>& lambda,
+                               const ConstraintSet& constraints);
+
+  const ElasticityProblem& problem_;
+  std::unique_ptr<fem::StiffnessMatrix> stiffness_;
+  NewtonSystem system_;  // its matrix: stiffness_'s, or with contact the augmented matrix built from it
+};
+
+// Rigid-body modes of the space (translations, rotations about the centroid) interpolated in
+// its basis and orthonormalised: the near-null space handed to AMG.
+// n_extra zero entries follow (the multipliers of a contact system).
+MatNullSpace rigid_body_modes(MPI_Comm comm, const fem::FieldSpace& space, int n_extra = 0);
+
+}  // namespace stiction::nonlinear
