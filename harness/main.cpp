@@ -11,6 +11,8 @@
 
 #include <cctype>
 #include <filesystem>
+#include <optional>
+#include <ostream>
 #include <set>
 
 #include "atlas_command.hpp"
@@ -18,6 +20,7 @@
 #include "bench_command.hpp"
 #include "bench_report.hpp"
 #include "builtin_scenes.hpp"
+#include "mpi_processes.hpp"
 #include "common/error.hpp"
 #include "common/petsc.hpp"
 #include "registry.hpp"
@@ -196,14 +199,19 @@ int main(int argc, char** argv) {
   auto* report_cmd = app.add_subcommand("report", "rebuild report.md of a sweep from its CSV files");
   report_cmd->add_option("dir", report_dir, "the sweep's output directory")->required();
 
+  const harness::MpiProcesses launched = harness::launched_processes();
   try {
     app.parse(static_cast<int>(cli_argv.size()), cli_argv.data());
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : static_cast<int>(ErrorKind::Input);
+    std::ostream quiet(nullptr);  // under mpirun, rank 0 alone prints the usage error
+    const int code = launched.rank == 0 ? app.exit(e) : app.exit(e, quiet, quiet);
+    return code == 0 ? 0 : static_cast<int>(ErrorKind::Input);
   }
+  const std::string command = app.get_subcommands().front()->get_name();
 
   // The sweep and the report start no PETSc: each run is its own `stiction solve` process.
   try {
+    if (*bench_cmd || *report_cmd) harness::require_one_process(launched, command);
     if (*bench_cmd) {
       bench.petsc_options = petsc_pairs;
       harness::run_bench(bench, harness::collect_run_info(argc, argv));
@@ -216,8 +224,7 @@ int main(int argc, char** argv) {
       return 0;
     }
   } catch (const Error& e) {
-    fmt::print(stderr, "stiction: error: {}\n", e.what());
-    return static_cast<int>(e.kind());
+    return harness::report_failure(launched, e.kind(), e.what(), false);
   }
 
   // argv[argc] is a null pointer (C 5.1.2.2.1): Open MPI's MPI_Init walks the array to it,
@@ -226,8 +233,16 @@ int main(int argc, char** argv) {
   int petsc_argc = static_cast<int>(petsc_argv.size());
   petsc_argv.push_back(nullptr);
   char** petsc_args = petsc_argv.data();
+  std::optional<PetscSession> petsc;
   try {
-    PetscSession petsc(&petsc_argc, &petsc_args);
+    petsc.emplace(&petsc_argc, &petsc_args);
+  } catch (const Error& e) {
+    return harness::report_failure(launched, e.kind(), e.what(), false);
+  }
+  // Failures are reported while MPI is up, so that one met by a single process can end the job.
+  const harness::MpiProcesses processes = harness::petsc_processes();
+  try {
+    harness::require_one_process(processes, command);
     if (*scenes_cmd) list_scenes(schema);
     if (*solvers_cmd) list_solvers();
     if (*solve_cmd) {
@@ -245,11 +260,9 @@ int main(int argc, char** argv) {
       reject_unused(petsc_given);
     }
   } catch (const Error& e) {
-    fmt::print(stderr, "stiction: error: {}\n", e.what());
-    return static_cast<int>(e.kind());
+    return harness::report_failure(processes, e.kind(), e.what(), true);
   } catch (const std::exception& e) {
-    fmt::print(stderr, "stiction: internal error: {}\n", e.what());
-    return static_cast<int>(ErrorKind::Internal);
+    return harness::report_failure(processes, ErrorKind::Internal, e.what(), true, "internal error");
   }
   return 0;
 }

@@ -22,20 +22,19 @@
 #include <vector>
 
 #include "builtin_scenes.hpp"
+#include "cli_run.hpp"
 #include "checkpoint.hpp"
 #include "csv_table.hpp"
 #include "run_info.hpp"
 #include "vtu_reader.hpp"
 
-#ifndef STICTION_BINARY
-#error "STICTION_BINARY (path of the stiction executable) must be defined by the build"
-#endif
-
-extern char** environ;
-
 namespace {
 
 namespace fs = std::filesystem;
+using stiction::test::CliRun;
+using stiction::test::read_file;
+using stiction::test::shell_quote;
+using stiction::test::without_mpi_environment;
 
 #ifdef STICTION_TEST_DATA_DIR
 const fs::path data_dir = STICTION_TEST_DATA_DIR;
@@ -71,64 +70,6 @@ value = [0.0, -1.0]
 [load]
 steps = 4
 )";
-
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::string shell_quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-// `env -u NAME ...` for the MPI variables of this (PETSc-initialised) test process, so the
-// child starts as its own MPI singleton instead of joining this process's PMIx job.
-std::string without_mpi_environment() {
-  std::string prefix = "env";
-  for (char** e = environ; *e != nullptr; ++e) {
-    const std::string var = *e;
-    const std::string name = var.substr(0, var.find('='));
-    if (name.rfind("OMPI_", 0) == 0 || name.rfind("PMIX_", 0) == 0 || name.rfind("OPAL_", 0) == 0)
-      prefix += " -u " + name;
-  }
-  return prefix;
-}
-
-// One run of the binary: exit code (128 + signal if it was killed) and captured stderr.
-struct CliRun {
-  int exit_code = -1;
-  std::string err;
-
-  static constexpr int timeout_seconds = 300;  // `timeout` exits 124 if the run hangs
-
-  static CliRun of(const std::vector<std::string>& args, const fs::path& workdir) {
-    const fs::path err_file = workdir / "stderr.txt";
-    std::string command = "cd " + shell_quote(workdir.string()) + " && exec " +
-                          without_mpi_environment() + " timeout " +
-                          std::to_string(timeout_seconds) + " " + shell_quote(STICTION_BINARY);
-    for (const auto& a : args) command += " " + shell_quote(a);
-    command += " >" + shell_quote((workdir / "stdout.txt").string()) + " 2>" +
-               shell_quote(err_file.string());
-    const int status = std::system(command.c_str());
-    CliRun run;
-    if (status != -1 && WIFEXITED(status)) run.exit_code = WEXITSTATUS(status);
-    else if (status != -1 && WIFSIGNALED(status)) run.exit_code = 128 + WTERMSIG(status);
-    run.err = read_file(err_file);
-    return run;
-  }
-
-  std::vector<std::string> error_lines() const {
-    std::vector<std::string> lines;
-    std::istringstream in(err);
-    for (std::string line; std::getline(in, line);)
-      if (line.rfind("stiction: error:", 0) == 0) lines.push_back(line);
-    return lines;
-  }
-};
 
 // A variant of the cantilever-2d scene, edited by exact text replacement.
 struct SceneVariant {
