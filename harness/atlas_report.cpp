@@ -8,6 +8,7 @@
 #include <cctype>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <vector>
 
 #include "csv_table.hpp"
@@ -34,17 +35,22 @@ using Row = std::map<std::string, std::string>;
 
 // Why a cell failed, from its run's metrics.toml: the Newton verdict's detail and the last
 // linear solve (its reason, Krylov iterations, the residual reduction reached against the
-// one asked, the AMG operator complexity where there is one).
+// one asked, the AMG operator complexity and GMRES's conditioning estimate where there are).
+// The cell's metrics.toml (none when its run wrote none).
+std::optional<toml::table> cell_metrics(const std::string& out_dir, const Row& r) {
+  try {
+    return toml::parse_file(out_dir + "/runs/" + cell_id(r.at("axis"), r.at("value"), r.at("solver")) +
+                            "/metrics.toml");
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
 std::string why_it_failed(const std::string& out_dir, const Row& r) {
   std::string why = r.at("detail").empty() ? r.at("reason") : r.at("reason") + ": " + r.at("detail");
-  toml::table metrics;
-  try {
-    metrics = toml::parse_file(out_dir + "/runs/" + cell_id(r.at("axis"), r.at("value"), r.at("solver")) +
-                               "/metrics.toml");
-  } catch (const std::exception&) {
-    return why;
-  }
-  const toml::array* solves = metrics["linear_solve"].as_array();
+  const std::optional<toml::table> metrics = cell_metrics(out_dir, r);
+  if (!metrics) return why;
+  const toml::array* solves = (*metrics)["linear_solve"].as_array();
   if (!solves || solves->empty() || !solves->back().as_table()) return why;
   const toml::table& last = *solves->back().as_table();
   why += fmt::format("; last linear solve {}", last["reason"].value<std::string>().value_or("?"));
@@ -56,7 +62,51 @@ std::string why_it_failed(const std::string& out_dir, const Row& r) {
     if (const auto rtol = last["ksp_rtol"].value<double>()) why += fmt::format(" (asked {:g})", *rtol);
   }
   if (const auto c = last["amg_operator_complexity"].value<double>()) why += fmt::format(", AMG operator complexity {:.2f}", *c);
+  const auto sigma_max = last["sigma_max_estimate"].value<double>(), sigma_min = last["sigma_min_estimate"].value<double>();
+  if (sigma_max && sigma_min)
+    why += fmt::format(", preconditioned operator's condition estimate {:.1e} (singular values {:.1e} / {:.1e} from "
+                       "GMRES's last cycle)",
+                       *sigma_max / *sigma_min, *sigma_max, *sigma_min);
   return why;
+}
+
+// The largest conditioning estimate of the preconditioned operator over the cell's linear
+// solves (GMRES backends, solvers/ksp_solver.hpp), or none.
+std::optional<double> largest_condition_estimate(const std::string& out_dir, const Row& r) {
+  const std::optional<toml::table> metrics = cell_metrics(out_dir, r);
+  const toml::array* solves = metrics ? (*metrics)["linear_solve"].as_array() : nullptr;
+  if (!solves) return std::nullopt;
+  std::optional<double> largest;
+  for (const auto& solve : *solves)
+    if (const auto* t = solve.as_table())
+      if (const auto c = (*t)["condition_estimate"].value<double>()) largest = std::max(largest.value_or(0.0), *c);
+  return largest;
+}
+
+// Per value and backend, the largest conditioning estimate (empty when no cell has one).
+std::string conditioning_table(const std::string& out_dir, const std::vector<std::string>& values,
+                               const std::vector<std::string>& solvers,
+                               const std::map<std::pair<std::string, std::string>, const Row*>& cells) {
+  std::string rows;
+  bool any = false;
+  for (const auto& v : values) {
+    rows += "| " + v + " |";
+    for (const auto& s : solvers) {
+      const auto it = cells.find({v, s});
+      const auto c = it == cells.end() ? std::nullopt : largest_condition_estimate(out_dir, *it->second);
+      any = any || c.has_value();
+      rows += " " + (c ? fmt::format("{:.1e}", *c) : std::string("—")) + " |";
+    }
+    rows += "\n";
+  }
+  if (!any) return {};
+  std::string md = "\nLargest conditioning estimate of the preconditioned operator over each cell's linear solves "
+                   "(sigma_max / sigma_min from GMRES's Hessenberg matrix, its last restart cycle; — for a direct "
+                   "backend or a run without the figure):\n\n| value |";
+  for (const auto& s : solvers) md += " " + s + " |";
+  md += "\n|---|";
+  for (size_t k = 0; k < solvers.size(); ++k) md += "---|";
+  return md + "\n" + rows;
 }
 
 // Load increments the cell's run failed and retried with a smaller increment (the rows of
@@ -167,6 +217,7 @@ void write_atlas_report(const std::string& out_dir) {
       }
       md += "\n";
     }
+    md += conditioning_table(out_dir, values[axis], solvers[axis], cells[axis]);
     md += "\n" + heat_map(out_dir, axis, values[axis], solvers[axis], cells[axis], index++);
   }
   write_text_file(out_dir + "/report.md", md);

@@ -152,6 +152,7 @@ void KspSolver::setup(const nonlinear::NewtonSystem& system) {
   configure(system);
   STICTION_PETSC(KSPSetFromOptions(ksp_));
   install_stagnation_test();
+  if (estimates_singular_values()) STICTION_PETSC(KSPSetComputeSingularValues(ksp_, PETSC_TRUE));
   // A failed factorisation or preconditioner set-up (out of memory, zero pivot) is a
   // result of this backend on this system, not a program error: solve() reports it.
   setup_failure_ = refuse_setup(system);
@@ -212,7 +213,23 @@ nonlinear::LinearSolveStats KspSolver::solve(const nonlinear::NewtonSystem& syst
   s.initial_residual = bnorm;
   s.final_residual = rnorm;
   s.converged = reason > 0 && std::isfinite(rnorm);
+  if (its > 0 && estimates_singular_values()) {
+    PetscReal sigma_max = 0, sigma_min = 0;
+    STICTION_PETSC(KSPComputeExtremeSingularValues(ksp_, &sigma_max, &sigma_min));
+    if (std::isfinite(sigma_max) && std::isfinite(sigma_min) && sigma_max > 0 && sigma_min > 0) {
+      s.extra["sigma_max_estimate"] = sigma_max;
+      s.extra["sigma_min_estimate"] = sigma_min;
+      s.extra["condition_estimate"] = sigma_max / sigma_min;
+    }
+  }
   return s;
+}
+
+bool KspSolver::estimates_singular_values() const {
+  KSPType type;
+  STICTION_PETSC(KSPGetType(ksp_, &type));
+  const std::string t = type ? type : "";
+  return t == KSPGMRES || t == KSPFGMRES;
 }
 
 void KspSolver::install_stagnation_test() {

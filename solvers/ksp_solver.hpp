@@ -12,6 +12,14 @@
 // to reach its tolerance stops as DIVERGED_STAGNATION (0 turns the test off). A solve whose
 // recent rate reaches the tolerance within -ksp_max_it is never stopped; a hopeless one
 // (boomeramg on an indefinite contact system) ends after a window instead of at -ksp_max_it.
+//
+// Conditioning: a GMRES solve also reports the extreme singular values of the
+// preconditioned operator estimated from its own Hessenberg matrix (KSPSetComputeSingularValues:
+// no extra operator application, and the iterates are the same), as `sigma_max_estimate`,
+// `sigma_min_estimate` and their ratio `condition_estimate`. Restarted GMRES estimates from its
+// last cycle only (PETSc's KSPComputeExtremeSingularValues): sigma_max is usually within a
+// few percent, sigma_min can be far off when the solve has not converged, so the ratio says
+// how hard the preconditioned system is, not its exact condition number.
 #include <string>
 
 #include "common/petsc.hpp"
@@ -55,6 +63,7 @@ protected:
 private:
   struct StagnationTest;
   void install_stagnation_test();
+  bool estimates_singular_values() const;  // GMRES and FGMRES
   void create_ksp();  // a new KSP under the backend's prefix
   std::string name_;
   MPI_Comm comm_;

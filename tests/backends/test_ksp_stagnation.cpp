@@ -1,9 +1,11 @@
-// The Krylov stagnation test of every GMRES backend (solvers/ksp_solver.hpp): a hopeless
-// solve stops after one window as DIVERGED_STAGNATION, a slow but steady one is left alone.
+// The Krylov diagnostics of every GMRES backend (solvers/ksp_solver.hpp): the stagnation
+// test (a hopeless solve stops after one window as DIVERGED_STAGNATION, a slow but steady
+// one is left alone) and the conditioning estimate from GMRES's Hessenberg matrix.
 #include <gtest/gtest.h>
 
 #include <petscksp.h>
 
+#include <cmath>
 #include <string>
 
 #include "common/petsc.hpp"
@@ -45,6 +47,7 @@ LinearSolveStats solve_unpreconditioned(const NewtonSystem& system, const std::s
   STICTION_PETSC(PetscOptionsClearValue(nullptr, "-ilu_gmres_pc_type"));
   STICTION_PETSC(PetscOptionsClearValue(nullptr, "-ilu_gmres_ksp_stagnation_margin"));
   STICTION_PETSC(PetscOptionsClearValue(nullptr, "-ilu_gmres_ksp_gmres_restart"));
+  STICTION_PETSC(PetscOptionsClearValue(nullptr, "-ilu_gmres_ksp_rtol"));
   return stats;
 }
 
@@ -83,6 +86,31 @@ TEST(KrylovStagnation, ASlowSteadySolveIsLeftAlone) {
   EXPECT_GT(unguarded.iterations, 500) << "longer than one window, or the test shows nothing";
   EXPECT_TRUE(guarded.converged) << guarded.reason;
   EXPECT_EQ(guarded.iterations, unguarded.iterations);
+}
+
+// The 1D Laplacian tridiag(-1, 2, -1) of size n, symmetric positive definite, has the
+// singular values 2 - 2 cos(k pi / (n + 1)), k = 1..n, with eigenvectors sin(k j pi / (n + 1)).
+// The right side e_0 has a component along every one of them (a constant right side misses
+// the even k, the largest among them), so unpreconditioned GMRES without a restart spans the
+// whole space before it converges to 1e-12 and its Hessenberg matrix holds the extreme
+// singular values: the estimate must match the exact condition number.
+TEST(KrylovConditioning, GmresEstimatesTheConditionOfTheLaplacian) {
+  const PetscInt n = 40;
+  std::vector<std::tuple<PetscInt, PetscInt, double>> entries;
+  for (PetscInt i = 0; i < n; ++i) {
+    entries.emplace_back(i, i, 2.0);
+    if (i > 0) entries.emplace_back(i, i - 1, -1.0);
+    if (i + 1 < n) entries.emplace_back(i, i + 1, -1.0);
+  }
+  const NewtonSystem laplacian = system_of(n, entries);
+  const LinearSolveStats s = solve_unpreconditioned(laplacian, "-ilu_gmres_ksp_gmres_restart 100 -ilu_gmres_ksp_rtol 1e-12");
+  ASSERT_TRUE(s.converged) << s.reason;
+  const double pi = std::acos(-1.0);
+  const double sigma_max = 2 - 2 * std::cos(n * pi / (n + 1)), sigma_min = 2 - 2 * std::cos(pi / (n + 1));
+  ASSERT_TRUE(s.extra.count("condition_estimate")) << "no conditioning estimate reported";
+  EXPECT_NEAR(s.extra.at("sigma_max_estimate"), sigma_max, 1e-6 * sigma_max);
+  EXPECT_NEAR(s.extra.at("sigma_min_estimate"), sigma_min, 1e-6 * sigma_min);
+  EXPECT_NEAR(s.extra.at("condition_estimate"), sigma_max / sigma_min, 1e-6 * sigma_max / sigma_min);
 }
 
 }  // namespace

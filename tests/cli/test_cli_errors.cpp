@@ -647,6 +647,10 @@ TEST_F(StictionCli, AtlasNamesEveryCellsEndAndReportsAHang) {
   EXPECT_NE(report.find("None: every cell converged or named why"), std::string::npos) << report;
   EXPECT_NE(report.find(", 2 cut |"), std::string::npos) << report;
   EXPECT_NE(report.find("## contact[0].friction"), std::string::npos);
+  // GMRES's conditioning estimate: per converged cell, and in the reason of a failed one
+  // (schur-amg stopped after one Newton iteration).
+  EXPECT_NE(report.find("Largest conditioning estimate of the preconditioned operator"), std::string::npos) << report;
+  EXPECT_NE(report.find("preconditioned operator's condition estimate"), std::string::npos) << report;
   fs::remove(dir_ / "atlas" / "report.md");
   ASSERT_EQ(CliRun::of({"report", (dir_ / "atlas").string()}, dir_).exit_code, 0);
   EXPECT_EQ(read_file(dir_ / "atlas" / "report.md"), report);
