@@ -75,26 +75,56 @@ std::string violation_of(const SolveRun& run, bool nan) {
   return "crash";
 }
 
+// One cell of the sweep before the backend is chosen: the axis and value it shows in the
+// table ("KEY1 & KEY2" and "v1 & v2" for a pair), its mesh level and its scene settings.
+struct CellSetting {
+  std::string axis, value;
+  int level = 0;
+  std::vector<std::string> settings;  // KEY=VALUE, the base scene's first
+};
+
+// Every cell of a single axis (one key) or a pair (two keys, every combination of values).
+std::vector<CellSetting> cells_of(const std::vector<Axis>& keys, const AtlasOptions& o) {
+  std::vector<CellSetting> cells{{"", "", o.level, o.base}};
+  for (const Axis& a : keys) {
+    std::vector<CellSetting> grown;
+    for (const CellSetting& c : cells)
+      for (const auto& v : a.values) {
+        CellSetting g = c;
+        g.axis += (g.axis.empty() ? "" : kPairSeparator) + a.key;
+        g.value += (g.value.empty() ? "" : kPairSeparator) + v;
+        if (a.key == "level") g.level = std::stoi(v);
+        else g.settings.push_back(a.key + "=" + v);
+        grown.push_back(std::move(g));
+      }
+    cells = std::move(grown);
+  }
+  return cells;
+}
+
 }  // namespace
 
 void run_atlas(const AtlasOptions& o, const RunInfo& info) {
-  if (o.axes.empty()) throw Error("atlas: give at least one --axis KEY=v1,v2,...");
-  std::vector<Axis> axes;
-  for (const auto& text : o.axes) axes.push_back(parse_axis(text));
+  if (o.axes.empty() && o.pairs.empty()) throw Error("atlas: give at least one --axis KEY=v1,v2,... or --pair");
+  if (o.pairs.size() % 2) throw Error("atlas: --pair takes two axes, KEY1=v1,v2,... KEY2=w1,w2,...");
+  std::vector<std::vector<Axis>> sweeps;
+  for (const auto& text : o.axes) sweeps.push_back({parse_axis(text)});
+  for (size_t k = 0; k < o.pairs.size(); k += 2) {
+    sweeps.push_back({parse_axis(o.pairs[k]), parse_axis(o.pairs[k + 1])});
+    if (sweeps.back()[0].key == sweeps.back()[1].key)
+      throw Error(fmt::format("atlas: --pair of '{}' with itself", sweeps.back()[0].key));
+  }
   std::set<std::string> known;
   for (const auto& b : solvers::backends()) known.insert(b.name);
   for (const auto& s : o.solvers)
     if (!known.count(s)) throw Error(fmt::format("unknown solver backend '{}' (valid: {})", s, solvers::backend_names()));
-  // Every value must make a scene that builds: a misspelt key fails here, before any run.
-  for (const auto& a : axes)
-    for (const auto& v : a.values)
-      if (a.key == "level") {
-        open_scene(o.scene, std::stoi(v), o.base);
-      } else {
-        std::vector<std::string> settings = o.base;
-        settings.push_back(a.key + "=" + v);
-        open_scene(o.scene, o.level, settings);
-      }
+  std::vector<CellSetting> settings;
+  for (const auto& keys : sweeps) {
+    const auto cells = cells_of(keys, o);
+    settings.insert(settings.end(), cells.begin(), cells.end());
+  }
+  // Every cell must make a scene that builds: a misspelt key fails here, before any run.
+  for (const auto& c : settings) open_scene(o.scene, c.level, c.settings);
 
   const std::string out = o.out_dir, csv = out + "/atlas.csv";
   std::error_code ec;
@@ -111,35 +141,30 @@ void run_atlas(const AtlasOptions& o, const RunInfo& info) {
   });
   for (const auto& row : previous.rows) done.insert(cell_id(row.at("axis"), row.at("value"), row.at("solver")));
 
-  size_t cells = 0, index = 0;
-  for (const auto& a : axes) cells += a.values.size() * o.solvers.size();
-  for (const auto& a : axes)
-    for (const auto& value : a.values)
-      for (const auto& solver : o.solvers) {
-        ++index;
-        const std::string id = cell_id(a.key, value, solver);
-        if (done.count(id)) continue;
-        const std::string run_dir = (fs::path(out) / "runs" / id).string();
-        const bool by_level = a.key == "level";
-        std::vector<std::string> arguments{"--solver", solver};
-        for (const auto& setting : o.base) arguments.insert(arguments.end(), {"--set", setting});
-        if (!by_level) arguments.insert(arguments.end(), {"--set", a.key + "=" + value});
-        if (o.quick) arguments.push_back("--quick");
-        const SolveRun run =
-            run_solve_child(o.scene, by_level ? std::stoi(value) : o.level, arguments, {}, run_dir, limits);
-        const bool nan = nan_in_outputs(run_dir);
-        const std::string violation = violation_of(run, nan);
-        append_durably(csv, fmt::format("{},{},{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.3f},{:.1f},{},{},{}", o.scene,
-                                        by_level ? value : std::to_string(o.level), csv_field(a.key),
-                                        csv_field(value), solver, run.status,
-                                        csv_field(run.reason.empty() ? run.status : run.reason),
-                                        run.child.exit_code, run.newton, run.krylov, state_changes(run_dir),
-                                        run.wall_seconds, run.child.peak_rss_mb, nan ? 1 : 0, violation,
-                                        csv_field(run.detail)));
-        fmt::print(stderr, "atlas [{}/{}] {} = {}, {}: {}{}\n", index, cells, a.key, value, solver,
-                   run.reason.empty() ? run.status : run.reason, violation.empty() ? "" : " (VIOLATION: " + violation + ")");
-        write_atlas_report(out);
-      }
+  const size_t cells = settings.size() * o.solvers.size();
+  size_t index = 0;
+  for (const auto& c : settings)
+    for (const auto& solver : o.solvers) {
+      ++index;
+      const std::string id = cell_id(c.axis, c.value, solver);
+      if (done.count(id)) continue;
+      const std::string run_dir = (fs::path(out) / "runs" / id).string();
+      std::vector<std::string> arguments{"--solver", solver};
+      for (const auto& setting : c.settings) arguments.insert(arguments.end(), {"--set", setting});
+      if (o.quick) arguments.push_back("--quick");
+      const SolveRun run = run_solve_child(o.scene, c.level, arguments, {}, run_dir, limits);
+      const bool nan = nan_in_outputs(run_dir);
+      const std::string violation = violation_of(run, nan);
+      append_durably(csv, fmt::format("{},{},{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.3f},{:.1f},{},{},{}", o.scene,
+                                      c.level, csv_field(c.axis), csv_field(c.value), solver, run.status,
+                                      csv_field(run.reason.empty() ? run.status : run.reason), run.child.exit_code,
+                                      run.newton, run.krylov, state_changes(run_dir), run.wall_seconds,
+                                      run.child.peak_rss_mb, nan ? 1 : 0, violation, csv_field(run.detail)));
+      fmt::print(stderr, "atlas [{}/{}] {} = {}, {}: {}{}\n", index, cells, c.axis, c.value, solver,
+                 run.reason.empty() ? run.status : run.reason,
+                 violation.empty() ? "" : " (VIOLATION: " + violation + ")");
+      write_atlas_report(out);
+    }
   write_atlas_report(out);
 }
 

@@ -5,8 +5,10 @@
 // a time and memory limit. A cell's row in atlas.csv: converged or the named reason, Newton
 // and Krylov iterations, contact state changes, wall time, peak memory, whether any output
 // holds a NaN, and the violation of what must hold in every cell (a crash, a hang, a NaN,
-// a failure without a named reason). report.md (a table and a heat map per axis) is
-// rebuilt after every cell and by `stiction report DIR`.
+// a failure without a named reason). A pair of keys (--pair) is swept together, every value
+// of one with every value of the other, to map where two hard settings meet. report.md (a
+// table and a heat map per axis, per pair and backend) is rebuilt after every cell and by
+// `stiction report DIR`.
 #include <string>
 #include <vector>
 
@@ -19,6 +21,7 @@ struct AtlasOptions {
   int level = 0;
   std::vector<std::string> solvers{"schur-amg", "lu-mumps"};
   std::vector<std::string> axes;  // "KEY=v1,v2,..." (KEY a scene key path, or "level")
+  std::vector<std::string> pairs;  // two axes per pair, one after the other
   std::vector<std::string> base;  // KEY=VALUE settings of the base scene, in every cell
   std::string out_dir = "reports/atlas";
   bool resume = false;

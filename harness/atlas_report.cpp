@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <optional>
 #include <vector>
@@ -32,6 +33,8 @@ std::string cell_id(const std::string& key, const std::string& value, const std:
 namespace {
 
 using Row = std::map<std::string, std::string>;
+// (value, backend) -> its row; for a pair's grid, (first value, second value) -> one backend's row.
+using CellMap = std::map<std::pair<std::string, std::string>, const Row*>;
 
 // Why a cell failed, from its run's metrics.toml: the Newton verdict's detail and the last
 // linear solve (its reason, Krylov iterations, the residual reduction reached against the
@@ -86,7 +89,7 @@ std::optional<double> largest_condition_estimate(const std::string& out_dir, con
 // Per value and backend, the largest conditioning estimate (empty when no cell has one).
 std::string conditioning_table(const std::string& out_dir, const std::vector<std::string>& values,
                                const std::vector<std::string>& solvers,
-                               const std::map<std::pair<std::string, std::string>, const Row*>& cells) {
+                               const CellMap& cells) {
   std::string rows;
   bool any = false;
   for (const auto& v : values) {
@@ -132,7 +135,7 @@ std::string cell_text(const std::string& out_dir, const Row& r) {
 // Heat map of one axis: a square per (value, backend), coloured by Newton iterations when
 // the cell converged, a cross where it did not. Returns the markdown that shows it.
 std::string heat_map(const std::string& out_dir, const std::string& axis, const std::vector<std::string>& values,
-                     const std::vector<std::string>& solvers, const std::map<std::pair<std::string, std::string>, const Row*>& cells,
+                     const std::vector<std::string>& solvers, const CellMap& cells,
                      int index) {
   std::string ok, failed;
   for (size_t i = 0; i < values.size(); ++i)
@@ -165,6 +168,66 @@ std::string heat_map(const std::string& out_dir, const std::string& axis, const 
   return fmt::format("![{}]({}.svg)\n", axis, stem);
 }
 
+// A markdown table of rows x columns, each cell text(row, column) ("—" when it has none).
+std::string grid_table(const std::string& corner, const std::vector<std::string>& rows,
+                       const std::vector<std::string>& columns,
+                       const std::function<std::string(const std::string&, const std::string&)>& text) {
+  std::string md = "| " + corner + " |";
+  for (const auto& c : columns) md += " " + c + " |";
+  md += "\n|---|";
+  for (size_t k = 0; k < columns.size(); ++k) md += "---|";
+  md += "\n";
+  for (const auto& r : rows) {
+    md += "| " + r + " |";
+    for (const auto& c : columns) md += " " + text(r, c) + " |";
+    md += "\n";
+  }
+  return md;
+}
+
+// One key swept alone: value x backend.
+std::string axis_section(const std::string& out_dir, const std::string& axis, const std::vector<std::string>& values,
+                         const std::vector<std::string>& solvers, const CellMap& cells, int& index) {
+  std::string md = fmt::format("\n## {}\n\n", axis);
+  md += grid_table(axis, values, solvers, [&](const std::string& v, const std::string& s) {
+    const auto it = cells.find({v, s});
+    return it == cells.end() ? std::string("—") : cell_text(out_dir, *it->second);
+  });
+  md += conditioning_table(out_dir, values, solvers, cells);
+  return md + "\n" + heat_map(out_dir, axis, values, solvers, cells, index++);
+}
+
+std::pair<std::string, std::string> split_pair(const std::string& text) {
+  const auto at = text.find(kPairSeparator);
+  if (at == std::string::npos) return {text, ""};
+  return {text.substr(0, at), text.substr(at + std::string(kPairSeparator).size())};
+}
+
+// Two keys swept together: per backend, the first key's values x the second's.
+std::string pair_section(const std::string& out_dir, const std::string& axis, const std::vector<std::string>& values,
+                         const std::vector<std::string>& solvers, const CellMap& cells, int& index) {
+  const auto [first_key, second_key] = split_pair(axis);
+  std::vector<std::string> firsts, seconds;
+  for (const auto& v : values) {
+    const auto [a, b] = split_pair(v);
+    if (std::find(firsts.begin(), firsts.end(), a) == firsts.end()) firsts.push_back(a);
+    if (std::find(seconds.begin(), seconds.end(), b) == seconds.end()) seconds.push_back(b);
+  }
+  std::string md = fmt::format("\n## {} (together)\n", axis);
+  for (const auto& s : solvers) {
+    CellMap grid;  // (first value, second value) -> the backend's cell
+    for (const auto& [key, row] : cells)
+      if (key.second == s) grid[split_pair(key.first)] = row;
+    md += fmt::format("\n### {}: {} (rows) x {} (columns)\n\n", s, first_key, second_key);
+    md += grid_table(first_key + " \\ " + second_key, firsts, seconds, [&](const std::string& a, const std::string& b) {
+      const auto it = grid.find({a, b});
+      return it == grid.end() ? std::string("—") : cell_text(out_dir, *it->second);
+    });
+    md += "\n" + heat_map(out_dir, s + ": " + axis, firsts, seconds, grid, index++);
+  }
+  return md;
+}
+
 }  // namespace
 
 void write_atlas_report(const std::string& out_dir) {
@@ -180,7 +243,7 @@ void write_atlas_report(const std::string& out_dir) {
         "time limit) or a NaN in its output.\n\n## Cells that broke what must hold\n\n";
   std::vector<std::string> axes;
   std::map<std::string, std::vector<std::string>> values, solvers;
-  std::map<std::string, std::map<std::pair<std::string, std::string>, const Row*>> cells;
+  std::map<std::string, CellMap> cells;
   int violations = 0;
   for (const auto& r : table.rows) {
     const std::string& axis = r.at("axis");
@@ -203,23 +266,10 @@ void write_atlas_report(const std::string& out_dir) {
       failures += fmt::format("* {} = {}, {}: {}\n", r.at("axis"), r.at("value"), r.at("solver"), why_it_failed(out_dir, r));
   if (!failures.empty()) md += "\n## Why cells failed\n\n" + failures;
   int index = 0;
-  for (const auto& axis : axes) {
-    md += fmt::format("\n## {}\n\n| {} |", axis, axis);
-    for (const auto& s : solvers[axis]) md += " " + s + " |";
-    md += "\n|---|";
-    for (size_t k = 0; k < solvers[axis].size(); ++k) md += "---|";
-    md += "\n";
-    for (const auto& v : values[axis]) {
-      md += "| " + v + " |";
-      for (const auto& s : solvers[axis]) {
-        const auto it = cells[axis].find({v, s});
-        md += " " + (it == cells[axis].end() ? std::string("—") : cell_text(out_dir, *it->second)) + " |";
-      }
-      md += "\n";
-    }
-    md += conditioning_table(out_dir, values[axis], solvers[axis], cells[axis]);
-    md += "\n" + heat_map(out_dir, axis, values[axis], solvers[axis], cells[axis], index++);
-  }
+  for (const auto& axis : axes)
+    md += axis.find(kPairSeparator) == std::string::npos
+              ? axis_section(out_dir, axis, values[axis], solvers[axis], cells[axis], index)
+              : pair_section(out_dir, axis, values[axis], solvers[axis], cells[axis], index);
   write_text_file(out_dir + "/report.md", md);
 }
 

@@ -188,7 +188,11 @@ int main(int argc, char** argv) {
   atlas_cmd->add_option("--level", atlas.level, "mesh level")->check(CLI::Range(0, 4));
   atlas_cmd->add_option("--solvers", atlas.solvers, "backends (comma separated; default schur-amg,lu-mumps)")
       ->delimiter(',');
-  atlas_cmd->add_option("--axis", atlas.axes, "KEY=v1,v2,... (a scene key path, or level; ';' between values that hold commas); repeatable")->required();
+  atlas_cmd->add_option("--axis", atlas.axes, "KEY=v1,v2,... (a scene key path, or level; ';' between values that hold commas); repeatable");
+  atlas_cmd
+      ->add_option("--pair", atlas.pairs,
+                   "two axes swept together, KEY1=v1,v2,... KEY2=w1,w2,... (every combination); repeatable")
+      ->expected(2);
   atlas_cmd->add_option("--out", atlas.out_dir, "output directory (atlas.csv, report.md, runs/)");
   atlas_cmd->add_flag("--resume", atlas.resume, "continue: skip the cells already in atlas.csv");
   atlas_cmd->add_option("--set", atlas.base, "a key of the base scene, KEY=VALUE, in every cell; repeatable");

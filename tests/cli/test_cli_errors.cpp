@@ -670,6 +670,44 @@ TEST_F(StictionCli, AtlasNamesEveryCellsEndAndReportsAHang) {
   EXPECT_FALSE(fs::exists(dir_ / "bad" / "atlas.csv")) << "refused before any cell ran";
 }
 
+// A pair of keys is swept together: every value of one with every value of the other, each
+// cell's run getting both settings (friction changes the Newton count of the converged cells,
+// one Newton iteration fails every cell), and the report shows one grid per backend.
+TEST_F(StictionCli, AtlasSweepsAPairOfKeysTogether) {
+  const CliRun atlas = CliRun::of({"atlas", "hertz-cylinder-2d", "--solvers", "lu-mumps", "--pair",
+                                   "contact[0].friction=0,1", "newton.max_iterations=1,3", "--out", "pair"},
+                                  dir_);
+  ASSERT_EQ(atlas.exit_code, 0) << atlas.err;
+  std::map<std::string, std::map<std::string, std::string>> by_value;
+  for (const auto& row : stiction::harness::read_csv((dir_ / "pair" / "atlas.csv").string()).rows) {
+    EXPECT_EQ(row.at("axis"), "contact[0].friction & newton.max_iterations");
+    by_value[row.at("value")] = row;
+  }
+  ASSERT_EQ(by_value.size(), 4u);
+  for (const char* one_iteration : {"0 & 1", "1 & 1"}) {
+    ASSERT_TRUE(by_value.count(one_iteration)) << one_iteration;
+    EXPECT_EQ(by_value[one_iteration].at("reason"), "DIVERGED_MAX_ITERATIONS") << one_iteration;
+  }
+  ASSERT_TRUE(by_value.count("0 & 3") && by_value.count("1 & 3"));
+  EXPECT_EQ(by_value["0 & 3"].at("status"), "ok");
+  EXPECT_EQ(by_value["1 & 3"].at("status"), "ok");
+  EXPECT_NE(by_value["0 & 3"].at("newton_iterations"), by_value["1 & 3"].at("newton_iterations"))
+      << "the friction setting did not reach the runs";
+  const std::string report = read_file(dir_ / "pair" / "report.md");
+  EXPECT_NE(report.find("### lu-mumps: contact[0].friction (rows) x newton.max_iterations (columns)"), std::string::npos)
+      << report;
+  EXPECT_TRUE(fs::exists(dir_ / "pair" / "atlas-axis-0.svg") || report.find("Heat map not drawn") != std::string::npos);
+
+  const CliRun same_key = CliRun::of({"atlas", "hertz-cylinder-2d", "--pair", "contact[0].friction=0,1",
+                                      "contact[0].friction=2", "--out", "bad"},
+                                     dir_);
+  EXPECT_EQ(same_key.exit_code, 2) << same_key.err;
+  EXPECT_EQ(same_key.error_lines().size(), 1u) << same_key.err;
+  const CliRun one_axis = CliRun::of({"atlas", "hertz-cylinder-2d", "--pair", "contact[0].friction=0,1", "--out", "bad"}, dir_);
+  EXPECT_EQ(one_axis.exit_code, 2) << one_axis.err;
+  EXPECT_FALSE(fs::exists(dir_ / "bad" / "atlas.csv")) << "refused before any cell ran";
+}
+
 // On a scene that models an analytic solution the sweep also compares each run with it,
 // the reference's own figures included; on other scenes those columns stay empty.
 // hertz-cylinder-2d level 0 fits the half-width and the peak pressure within 0.3%
