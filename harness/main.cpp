@@ -192,7 +192,8 @@ int main(int argc, char** argv) {
   atlas_cmd
       ->add_option("--pair", atlas.pairs,
                    "two axes swept together, KEY1=v1,v2,... KEY2=w1,w2,... (every combination); repeatable")
-      ->expected(2);
+      ->expected(2)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   atlas_cmd->add_option("--out", atlas.out_dir, "output directory (atlas.csv, report.md, runs/)");
   atlas_cmd->add_flag("--resume", atlas.resume, "continue: skip the cells already in atlas.csv");
   atlas_cmd->add_option("--set", atlas.base, "a key of the base scene, KEY=VALUE, in every cell; repeatable");

@@ -706,6 +706,14 @@ TEST_F(StictionCli, AtlasSweepsAPairOfKeysTogether) {
   const CliRun one_axis = CliRun::of({"atlas", "hertz-cylinder-2d", "--pair", "contact[0].friction=0,1", "--out", "bad"}, dir_);
   EXPECT_EQ(one_axis.exit_code, 2) << one_axis.err;
   EXPECT_FALSE(fs::exists(dir_ / "bad" / "atlas.csv")) << "refused before any cell ran";
+  // A second --pair is read as a pair of its own: its misspelt key is named.
+  const CliRun second_pair = CliRun::of({"atlas", "hertz-cylinder-2d", "--pair", "contact[0].friction=0,1",
+                                         "newton.max_iterations=3", "--pair", "contact[0].friction=1",
+                                         "newton.max_iteratons=3", "--out", "bad"},
+                                        dir_);
+  EXPECT_EQ(second_pair.exit_code, 2) << second_pair.err;
+  EXPECT_NE(second_pair.err.find("max_iteratons"), std::string::npos) << second_pair.err;
+  EXPECT_FALSE(fs::exists(dir_ / "bad" / "atlas.csv")) << "refused before any cell ran";
 }
 
 // On a scene that models an analytic solution the sweep also compares each run with it,
