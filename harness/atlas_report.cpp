@@ -86,30 +86,40 @@ std::optional<double> largest_condition_estimate(const std::string& out_dir, con
   return largest;
 }
 
-// Per value and backend, the largest conditioning estimate (empty when no cell has one).
-std::string conditioning_table(const std::string& out_dir, const std::vector<std::string>& values,
-                               const std::vector<std::string>& solvers,
-                               const CellMap& cells) {
-  std::string rows;
-  bool any = false;
-  for (const auto& v : values) {
-    rows += "| " + v + " |";
-    for (const auto& s : solvers) {
-      const auto it = cells.find({v, s});
-      const auto c = it == cells.end() ? std::nullopt : largest_condition_estimate(out_dir, *it->second);
-      any = any || c.has_value();
-      rows += " " + (c ? fmt::format("{:.1e}", *c) : std::string("—")) + " |";
-    }
-    rows += "\n";
-  }
-  if (!any) return {};
-  std::string md = "\nLargest conditioning estimate of the preconditioned operator over each cell's linear solves "
-                   "(sigma_max / sigma_min from GMRES's Hessenberg matrix, its last restart cycle; — for a direct "
-                   "backend or a run without the figure):\n\n| value |";
-  for (const auto& s : solvers) md += " " + s + " |";
+// A markdown table of rows x columns, each cell text(row, column) ("—" when it has none).
+std::string grid_table(const std::string& corner, const std::vector<std::string>& rows,
+                       const std::vector<std::string>& columns,
+                       const std::function<std::string(const std::string&, const std::string&)>& text) {
+  std::string md = "| " + corner + " |";
+  for (const auto& c : columns) md += " " + c + " |";
   md += "\n|---|";
-  for (size_t k = 0; k < solvers.size(); ++k) md += "---|";
-  return md + "\n" + rows;
+  for (size_t k = 0; k < columns.size(); ++k) md += "---|";
+  md += "\n";
+  for (const auto& r : rows) {
+    md += "| " + r + " |";
+    for (const auto& c : columns) md += " " + text(r, c) + " |";
+    md += "\n";
+  }
+  return md;
+}
+
+// Per cell of a table (rows x columns, the cells keyed (row, column)), the largest
+// conditioning estimate (empty when no cell has one).
+std::string conditioning_table(const std::string& out_dir, const std::string& corner,
+                               const std::vector<std::string>& rows, const std::vector<std::string>& columns,
+                               const CellMap& cells) {
+  bool any = false;
+  const std::string table = grid_table(corner, rows, columns, [&](const std::string& r, const std::string& c) {
+    const auto it = cells.find({r, c});
+    const auto estimate = it == cells.end() ? std::nullopt : largest_condition_estimate(out_dir, *it->second);
+    any = any || estimate.has_value();
+    return estimate ? fmt::format("{:.1e}", *estimate) : std::string("—");
+  });
+  if (!any) return {};
+  return "\nLargest conditioning estimate of the preconditioned operator over each cell's linear solves "
+         "(sigma_max / sigma_min from GMRES's Hessenberg matrix, its last restart cycle; — for a direct backend "
+         "or a run without the figure):\n\n" +
+         table;
 }
 
 // Load increments the cell's run failed and retried with a smaller increment (the rows of
@@ -168,23 +178,6 @@ std::string heat_map(const std::string& out_dir, const std::string& axis, const 
   return fmt::format("![{}]({}.svg)\n", axis, stem);
 }
 
-// A markdown table of rows x columns, each cell text(row, column) ("—" when it has none).
-std::string grid_table(const std::string& corner, const std::vector<std::string>& rows,
-                       const std::vector<std::string>& columns,
-                       const std::function<std::string(const std::string&, const std::string&)>& text) {
-  std::string md = "| " + corner + " |";
-  for (const auto& c : columns) md += " " + c + " |";
-  md += "\n|---|";
-  for (size_t k = 0; k < columns.size(); ++k) md += "---|";
-  md += "\n";
-  for (const auto& r : rows) {
-    md += "| " + r + " |";
-    for (const auto& c : columns) md += " " + text(r, c) + " |";
-    md += "\n";
-  }
-  return md;
-}
-
 // One key swept alone: value x backend.
 std::string axis_section(const std::string& out_dir, const std::string& axis, const std::vector<std::string>& values,
                          const std::vector<std::string>& solvers, const CellMap& cells, int& index) {
@@ -193,7 +186,7 @@ std::string axis_section(const std::string& out_dir, const std::string& axis, co
     const auto it = cells.find({v, s});
     return it == cells.end() ? std::string("—") : cell_text(out_dir, *it->second);
   });
-  md += conditioning_table(out_dir, values, solvers, cells);
+  md += conditioning_table(out_dir, "value", values, solvers, cells);
   return md + "\n" + heat_map(out_dir, axis, values, solvers, cells, index++);
 }
 
@@ -223,6 +216,7 @@ std::string pair_section(const std::string& out_dir, const std::string& axis, co
       const auto it = grid.find({a, b});
       return it == grid.end() ? std::string("—") : cell_text(out_dir, *it->second);
     });
+    md += conditioning_table(out_dir, first_key + " \\ " + second_key, firsts, seconds, grid);
     md += "\n" + heat_map(out_dir, s + ": " + axis, firsts, seconds, grid, index++);
   }
   return md;
