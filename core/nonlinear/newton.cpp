@@ -7,7 +7,6 @@
 
 #include "common/error.hpp"
 #include "fem/elasticity_assembly.hpp"
-#include "nonlinear/augmented_matrix.hpp"
 
 namespace stiction::nonlinear {
 
