@@ -32,6 +32,12 @@ atlas ironing-2d-large-slip ironing-2d --quick --set load.quick_until=1.2 \
 atlas ironing-2d-large-slip-no-cut ironing-2d --quick --set load.quick_until=1.2 --set load.max_cuts=0 \
   --solvers schur-amg,schur-gamg,fieldsplit-schur,lu-mumps --axis "$slip"
 
+# Hard settings together: the stiffness contrast (indenter modulus 100, 1 000, 10 000 times
+# the slab's) with friction and with the tangential penalty, every combination.
+contrast='material[1].E=68960,689600,6896000'
+atlas ironing-2d-pairs ironing-2d --quick --solvers schur-amg,schur-gamg,lu-mumps \
+  --pair "$contrast" 'contact[0].friction=0,0.3,1' --pair "$contrast" 'contact[0].tangential_penalty=1,1e3,1e6'
+
 # Grazing contact: sliding-block-2d pressed 1e-2 (the scene), then by less, down to exactly
 # touching, then held off the plane by 1e-12 to 1e-6 (the gap tolerance is 1e-9 of the slave
 # surface's diameter), while its top is pulled along the plane.
