@@ -33,7 +33,7 @@ const char* kRunColumns =
     "cells,load_steps,"
     "load_steps_completed,newton_iterations,linear_solves,krylov_iterations,krylov_per_linear_solve,wall_seconds,"
     "assembly_seconds,setup_seconds,solve_seconds,seconds_per_linear_solve,peak_rss_mb,mumps_memory_mb,"
-    "amg_operator_complexity,krylov_rtol,detail";
+    "amg_operator_complexity,krylov_rtol,mumps_ordering,detail";
 const char* kStepColumns =
     "scene,level,solver,step,newton_iteration,converged,reason,krylov_iterations,initial_residual,final_residual,"
     "assembly_seconds,setup_seconds,solve_seconds";
@@ -54,6 +54,20 @@ int count_data_lines(const std::string& path) {
   return std::max(n, 0);
 }
 
+// MUMPS's ordering codes (ICNTL(7) / INFOG(7), MUMPS 5.5 users' guide).
+std::string mumps_ordering_name(int code) {
+  switch (code) {
+    case 0: return "AMD";
+    case 1: return "given";
+    case 2: return "AMF";
+    case 3: return "SCOTCH";
+    case 4: return "PORD";
+    case 5: return "METIS";
+    case 6: return "QAMD";
+  }
+  return fmt::format("code {}", code);
+}
+
 void write_rows(const std::string& out, const Run& run, const ChildResult& child, const std::string& run_dir) {
   const std::string metrics_path = run_dir + "/metrics.toml";
   toml::table metrics;
@@ -70,6 +84,7 @@ void write_rows(const std::string& out, const Run& run, const ChildResult& child
   const toml::table& m = have_metrics && metrics["run"].as_table() ? *metrics["run"].as_table() : empty;
   auto num = [&](const char* k) { return m[k].value<double>().value_or(0.0); };
   double mumps = 0, complexity = 0, krylov_rtol = 0;
+  std::string ordering;  // the fill-reducing ordering MUMPS ran (INFOG(7)), of the whole system or the P1 block
   int n_complexity = 0;
   std::string steps;
   if (const auto* solves = metrics["linear_solve"].as_array()) {
@@ -79,6 +94,8 @@ void write_rows(const std::string& out, const Run& run, const ChildResult& child
                         s["ll_mumps_memory_MB"].value<double>().value_or(0.0)});
       if (auto c = s["amg_operator_complexity"].value<double>()) complexity += *c, ++n_complexity;
       krylov_rtol = s["ksp_rtol"].value<double>().value_or(krylov_rtol);
+      for (const char* key : {"mumps_ordering", "ll_mumps_ordering"})
+        if (const auto code = s[key].value<double>()) ordering = mumps_ordering_name(static_cast<int>(*code));
       steps += fmt::format("{},{},{},{},{},{},{},{},{:.6e},{:.6e},{:.4f},{:.4f},{:.4f}\n", run.scene, run.level,
                            run.solver, s["step"].value<int64_t>().value_or(0),
                            s["newton_iteration"].value<int64_t>().value_or(0),
@@ -97,7 +114,7 @@ void write_rows(const std::string& out, const Run& run, const ChildResult& child
   const std::string row = fmt::format(
       "{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.2f},{:.3f},"
       "{:.3f},{:.3f},{:.3f},{:.4f},"
-      "{:.1f},{:.0f},{:.3f},{},{}",
+      "{:.1f},{:.0f},{:.3f},{},{},{}",
       run.scene, run.level, run.solver, status, m["converged"].value<bool>().value_or(false) ? 1 : 0,
       csv_field(m["reason"].value<std::string>().value_or(status)), num("unknowns"), num("unknowns_u_l"),
       num("unknowns_u_q"), num("unknowns_p"), num("multipliers"), num("vertices"), num("cells"), num("load_steps"), num("load_steps_completed"), num("newton_iterations"), solves,
@@ -105,7 +122,7 @@ void write_rows(const std::string& out, const Run& run, const ChildResult& child
       num("assembly_seconds"), num("setup_seconds"), num("solve_seconds"),
       seconds_per_converged_solve(metrics["linear_solve"].as_array()), child.peak_rss_mb, mumps,
       n_complexity ? complexity / n_complexity : 0.0, krylov_rtol > 0 ? fmt::format("{:g}", krylov_rtol) : "",
-      csv_field(detail));
+      ordering, csv_field(detail));
   if (!steps.empty()) append_durably(out + "/steps.csv", steps);
   append_durably(out + "/runs.csv", row);
 }

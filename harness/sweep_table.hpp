@@ -1,6 +1,7 @@
 #pragma once
 // The CSV of a sweep (bench's runs.csv, tradeoff.csv, atlas.csv): started with its
-// provenance header and columns, or continued (--resume) only when it has the same columns.
+// provenance header and columns, or continued (--resume) when it has no column this
+// version does not write.
 #include <functional>
 #include <string>
 
@@ -10,8 +11,10 @@
 namespace stiction::harness {
 
 // A new file gets header() (comment lines, each ending in a newline) and the columns; an
-// existing one is refused without resume or with other columns (an older version's sweep),
-// else its rows are returned and a "# resumed" line is appended.
+// existing one is refused without resume or when it has a column this version does not
+// write; one that lacks some of this version's columns (an older version's sweep) is
+// rewritten with them, empty in its rows; then its rows are returned and a "# resumed" line
+// is appended.
 CsvTable open_sweep_table(const std::string& path, const std::string& columns, bool resume, const RunInfo& info,
                           const std::function<std::string()>& header);
 

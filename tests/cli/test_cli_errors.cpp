@@ -670,6 +670,50 @@ TEST_F(StictionCli, AtlasNamesEveryCellsEndAndReportsAHang) {
   EXPECT_FALSE(fs::exists(dir_ / "bad" / "atlas.csv")) << "refused before any cell ran";
 }
 
+// Every run row names the ordering MUMPS ran; a sweep written before that column existed is
+// resumed with the column added (empty in its rows, which keep their values), and one with a
+// column this version does not write is refused.
+TEST_F(StictionCli, BenchRowsNameTheMumpsOrderingAndResumeAnOlderSweep) {
+  const std::vector<std::string> bench = {"bench", "--scenes", "cantilever-2d", "--solvers", "lu-mumps", "--quick"};
+  auto with_out = [&](const std::string& out, bool resume) {
+    std::vector<std::string> args = bench;
+    args.insert(args.end(), {"--out", (dir_ / out).string()});
+    if (resume) args.push_back("--resume");
+    return CliRun::of(args, dir_);
+  };
+  const CliRun fresh = with_out("sweep", false);
+  ASSERT_EQ(fresh.exit_code, 0) << fresh.err;
+  const auto table = stiction::harness::read_csv((dir_ / "sweep" / "runs.csv").string());
+  ASSERT_EQ(table.rows.size(), 1u);
+  EXPECT_EQ(table.rows[0].at("mumps_ordering"), "PORD") << "Debian's MUMPS orders with PORD";
+
+  // The same table as an older version wrote it: without the mumps_ordering column.
+  std::string old_header, old_row;
+  for (const auto& c : table.columns)
+    if (c != "mumps_ordering") {
+      old_header += (old_header.empty() ? "" : ",") + c;
+      old_row += (old_row.empty() ? "" : ",") + table.rows[0].at(c);
+    }
+  fs::create_directories(dir_ / "old");
+  std::ofstream(dir_ / "old" / "runs.csv") << "# an older sweep\n" << old_header << "\n" << old_row << "\n";
+  const CliRun resumed = with_out("old", true);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  const auto upgraded = stiction::harness::read_csv((dir_ / "old" / "runs.csv").string());
+  EXPECT_EQ(upgraded.columns, table.columns);
+  ASSERT_EQ(upgraded.rows.size(), 1u) << "the finished run was not run again";
+  EXPECT_EQ(upgraded.rows[0].at("mumps_ordering"), "");
+  for (const auto& c : table.columns)
+    if (c != "mumps_ordering") {
+      EXPECT_EQ(upgraded.rows[0].at(c), table.rows[0].at(c)) << c;
+    }
+
+  fs::create_directories(dir_ / "other");
+  std::ofstream(dir_ / "other" / "runs.csv") << old_header << ",a_column_from_elsewhere\n";
+  const CliRun refused = with_out("other", true);
+  EXPECT_EQ(refused.exit_code, 2) << refused.err;
+  EXPECT_EQ(refused.error_lines().size(), 1u) << refused.err;
+}
+
 // A pair of keys is swept together: every value of one with every value of the other, each
 // cell's run getting both settings (friction changes the Newton count of the converged cells,
 // one Newton iteration fails every cell), and the report shows one grid per backend.
