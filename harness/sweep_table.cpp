@@ -2,10 +2,8 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <vector>
 
 #include "common/error.hpp"
 
@@ -13,45 +11,24 @@ namespace stiction::harness {
 
 namespace {
 
-std::vector<std::string> split_fields(const std::string& line) {
-  std::vector<std::string> fields;
-  size_t start = 0;
-  for (size_t comma; (comma = line.find(',', start)) != std::string::npos; start = comma + 1)
-    fields.push_back(line.substr(start, comma - start));
-  fields.push_back(line.substr(start));
-  return fields;
-}
-
 // An older sweep whose columns are all among `columns` (this version added some) is
-// rewritten with the new columns, left empty in its rows; false when it has a column this
-// version does not write.
-bool upgrade_columns(const std::string& path, const std::vector<std::string>& found, const std::string& columns) {
-  const std::vector<std::string> wanted = split_fields(columns);
-  std::vector<int> source;  // per new column, its index among the old ones (-1: new)
-  for (const auto& c : wanted) {
-    const auto at = std::find(found.begin(), found.end(), c);
-    source.push_back(at == found.end() ? -1 : static_cast<int>(at - found.begin()));
-  }
-  for (const auto& c : found)
-    if (std::find(wanted.begin(), wanted.end(), c) == wanted.end()) return false;
-  std::ifstream in(path);
+// rewritten with the new columns, left empty in its rows (its comments first, then the
+// table); false when it has a column this version does not write.
+bool upgrade_columns(const std::string& path, const CsvTable& old, const std::string& columns) {
+  const std::string joined = "," + columns + ",";
+  for (const auto& c : old.columns)
+    if (joined.find("," + c + ",") == std::string::npos) return false;
+  const CsvTable header = parse_csv(columns);  // the new columns, in order
   std::string text;
-  bool header_seen = false;
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line[0] == '#') {
-      text += line + "\n";
-      continue;
+  for (const auto& c : old.comments) text += "# " + c + "\n";
+  text += columns + "\n";
+  for (const auto& row : old.rows) {
+    std::string line;
+    for (size_t k = 0; k < header.columns.size(); ++k) {
+      const auto it = row.find(header.columns[k]);
+      line += (k ? "," : "") + (it == row.end() ? std::string() : it->second);
     }
-    if (!header_seen) {
-      header_seen = true;
-      text += columns + "\n";
-      continue;
-    }
-    const std::vector<std::string> old = split_fields(line);
-    std::string row;
-    for (size_t k = 0; k < source.size(); ++k)
-      row += (k ? "," : "") + (source[k] >= 0 && source[k] < static_cast<int>(old.size()) ? old[source[k]] : "");
-    text += row + "\n";
+    text += line + "\n";
   }
   const std::string upgraded = path + ".upgraded";
   {
@@ -76,7 +53,7 @@ CsvTable open_sweep_table(const std::string& path, const std::string& columns, b
   std::string found;
   for (const auto& c : previous.columns) found += (found.empty() ? "" : ",") + c;
   if (found != columns) {
-    if (!upgrade_columns(path, previous.columns, columns))
+    if (!upgrade_columns(path, previous, columns))
       throw Error(fmt::format("'{}' has columns this stiction does not write (another version's sweep): start a new "
                               "sweep in another --out",
                               path));
