@@ -229,7 +229,7 @@ int main(int argc, char** argv) {
       return 0;
     }
   } catch (const Error& e) {
-    return harness::report_failure(launched, e.kind(), e.what(), false);
+    return harness::report_failure(launched, e.kind(), e.reach(), e.what(), false);
   }
 
   // argv[argc] is a null pointer (C 5.1.2.2.1): Open MPI's MPI_Init walks the array to it,
@@ -242,12 +242,12 @@ int main(int argc, char** argv) {
   try {
     petsc.emplace(&petsc_argc, &petsc_args);
   } catch (const Error& e) {
-    return harness::report_failure(launched, e.kind(), e.what(), false);
+    return harness::report_failure(launched, e.kind(), e.reach(), e.what(), false);
   }
   // Failures are reported while MPI is up, so that one met by a single process can end the job.
   const harness::MpiProcesses processes = harness::petsc_processes();
   try {
-    harness::require_one_process(processes, command);
+    if (!*solve_cmd) harness::require_one_process(processes, command);
     if (*scenes_cmd) list_scenes(schema);
     if (*solvers_cmd) list_solvers();
     if (*solve_cmd) {
@@ -265,9 +265,10 @@ int main(int argc, char** argv) {
       reject_unused(petsc_given);
     }
   } catch (const Error& e) {
-    return harness::report_failure(processes, e.kind(), e.what(), true);
+    return harness::report_failure(processes, e.kind(), e.reach(), e.what(), true);
   } catch (const std::exception& e) {
-    return harness::report_failure(processes, ErrorKind::Internal, e.what(), true, "internal error");
+    return harness::report_failure(processes, ErrorKind::Internal, Reach::OneProcess, e.what(), true,
+                                   "internal error");
   }
   return 0;
 }

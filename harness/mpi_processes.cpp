@@ -36,14 +36,13 @@ MpiProcesses petsc_processes() {
 
 void require_one_process(const MpiProcesses& p, const std::string& command) {
   if (p.size <= 1) return;
-  throw Error(fmt::format("`stiction {}` runs on one MPI process (launched on {}): the mesh, the Newton system "
-                          "and the contact search are not distributed yet; run it without mpirun",
-                          command, p.size));
+  throw Error(fmt::format("`stiction {}` runs on one MPI process (launched on {}); `stiction solve` is the "
+                          "command that runs on several", command, p.size));
 }
 
-int report_failure(const MpiProcesses& p, ErrorKind kind, const std::string& message, bool mpi_initialised,
-                   const char* label) {
-  if (p.size <= 1 || kind == ErrorKind::Input) {
+int report_failure(const MpiProcesses& p, ErrorKind kind, Reach reach, const std::string& message,
+                   bool mpi_initialised, const char* label) {
+  if (p.size <= 1 || reach == Reach::EveryProcess) {
     if (p.rank == 0) fmt::print(stderr, "stiction: {}: {}\n", label, message);
     return static_cast<int>(kind);
   }

@@ -1,12 +1,12 @@
 #pragma once
-// stiction under mpirun. Every structure (mesh, dof numbering, Newton system, contact
-// search) lives on one process for now, so a launch on several processes is refused with
-// one message before any work starts; the rules below are the ones the distributed code
-// will keep:
+// stiction under mpirun. `stiction solve` runs on several processes (the Newton system is
+// distributed, the Newton state replicated: nonlinear::QuasiStaticSolver); every other
+// command is refused with one message before any work starts. Failures:
 //
-// * An input error (ErrorKind::Input) is met alike by every process, since every process
-//   reads the same input before any collective operation: rank 0 prints it, every process
-//   exits with its code, and mpirun returns non-zero.
+// * One met alike by every process (Reach::EveryProcess: an input error, since every
+//   process reads the same input before any collective operation, or a failure of the
+//   Newton state they share): rank 0 prints it, every process exits with its code, and
+//   mpirun returns non-zero.
 // * Any other failure may be met by one process while the others wait in a collective
 //   operation: that process prints it (naming its rank) and aborts the job, so no process
 //   is left hanging.
@@ -27,12 +27,13 @@ MpiProcesses launched_processes();
 // From PETSC_COMM_WORLD (PETSc initialised).
 MpiProcesses petsc_processes();
 
-// Throws the refusal (ErrorKind::Input) when launched on more than one process.
+// Throws the refusal (ErrorKind::Input) of a command that runs on one process when launched
+// on more than one.
 void require_one_process(const MpiProcesses& p, const std::string& command);
 
 // Prints `stiction: <label>: <message>` by the rules above and returns the exit code; does
 // not return when it aborts the job.
-int report_failure(const MpiProcesses& p, ErrorKind kind, const std::string& message, bool mpi_initialised,
-                   const char* label = "error");
+int report_failure(const MpiProcesses& p, ErrorKind kind, Reach reach, const std::string& message,
+                   bool mpi_initialised, const char* label = "error");
 
 }  // namespace stiction::harness

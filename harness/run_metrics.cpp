@@ -81,8 +81,10 @@ void write_metrics(const std::string& path, const scene::Scene& scene, const Run
                   {"assembly_seconds", assembly},
                   {"setup_seconds", setup},
                   {"solve_seconds", solve},
-                  {"peak_rss_mb", peak_resident_mb()},
+                  {"processes", summary.processes},
+                  {"peak_rss_mb", summary.processes > 1 ? summary.peak_rss_mb_max : peak_resident_mb()},
                   {"backend_options", summary.backend_options}};
+  if (summary.processes > 1) run.insert("peak_rss_mb_sum", summary.peak_rss_mb_sum);
   toml::table doc{{"run", std::move(run)}, {"step", std::move(step_rows)}, {"linear_solve", std::move(solve_rows)}};
   const std::string tmp = path + ".tmp";
   {

@@ -29,6 +29,10 @@ struct RunSummary {
   bool converged = false;
   std::string reason;  // CONVERGED, or the Newton reason of the failed step
   std::string detail;
+  // MPI processes of the run and their peak resident memory (the largest and the sum); on
+  // one process the peak is this process's own.
+  int processes = 1;
+  double peak_rss_mb_max = 0, peak_rss_mb_sum = 0;
 };
 
 void write_metrics(const std::string& path, const scene::Scene& scene, const RunSummary& summary,

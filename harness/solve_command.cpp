@@ -12,6 +12,7 @@
 #include "builtin_scenes.hpp"
 #include "checkpoint.hpp"
 #include "common/error.hpp"
+#include "common/process_memory.hpp"
 #include "contact/contact_state.hpp"
 #include "ksp_solver.hpp"
 #include "registry.hpp"
@@ -40,6 +41,14 @@ void print_state_change(const nonlinear::QuasiStaticSolver::StateChange& c) {
 
 void run_solve(const SolveOptions& o, const RunInfo& info) {
   const auto t_start = std::chrono::steady_clock::now();
+  // On several MPI processes every process holds the same Newton state; rank 0 alone
+  // writes the files and prints the progress.
+  int rank = 0, processes = 1;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  MPI_Comm_size(PETSC_COMM_WORLD, &processes);
+  const bool writer = rank == 0;
+  if (processes > 1 && !o.record_dir.empty())
+    throw Error(fmt::format("--record runs on one MPI process (launched on {})", processes));
   auto scene = open_scene(o.scene, o.level, o.overrides);
   if (!o.forcing.empty()) scene->newton.forcing = nonlinear::forcing_from_string(o.forcing);
   if (o.newton_rtol >= 0) scene->newton.rtol = o.newton_rtol;
@@ -64,7 +73,7 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
                               resume.scene, resume.level, scene->name, scene->level));
   }
   std::error_code ec;
-  std::filesystem::create_directories(out_dir, ec);
+  if (writer) std::filesystem::create_directories(out_dir, ec);
   if (ec) throw Error(fmt::format("cannot create output directory '{}': {}", out_dir, ec.message()));
 
   const auto& space = *scene->space;
@@ -85,19 +94,23 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   if (restart)
     header += fmt::format("# restarted from '{}' after load step {} (t = {:g})\n", o.restart_dir, resume.state.step,
                           resume.state.time);
-  if (!o.quiet) fmt::print(stderr, "{}", header);
+  if (processes > 1)
+    header += fmt::format("# MPI processes: {} (cells split by {}, the state replicated)\n", processes, "PT-Scotch");
+  const bool verbose = !o.quiet && writer;
+  if (verbose) fmt::print(stderr, "{}", header);
 
   std::unique_ptr<StepTable> table;
   std::unique_ptr<IterationTable> iteration_table;
   std::unique_ptr<ContactTable> contact_table;
-  if (scene->output.csv) {
+  if (scene->output.csv && writer) {
     if (!scene->problem.constraints.empty())
       contact_table = std::make_unique<ContactTable>(out_dir + "/contact.csv", header, scene->mesh.dim, restart);
     table = std::make_unique<StepTable>(out_dir + "/steps.csv", header, *scene, restart);
     iteration_table = std::make_unique<IterationTable>(out_dir + "/iterations.csv", header,
                                                        !scene->problem.constraints.empty(), restart);
   }
-  PvdCollection pvd(out_dir + "/solution.pvd");
+  std::unique_ptr<PvdCollection> pvd;
+  if (writer) pvd = std::make_unique<PvdCollection>(out_dir + "/solution.pvd");
   nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, scene->problem, scene->newton, *solver);
   if (restart) {
     newton.restore(resume.state);
@@ -111,22 +124,22 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
       record_system(o.record_dir, sys, du, stats, step, iteration, context);
     });
   }
-  if (o.trace_contact) newton.set_state_change_observer(print_state_change);
+  if (o.trace_contact && writer) newton.set_state_change_observer(print_state_change);
   double until = o.until >= 0 ? o.until : std::numeric_limits<double>::infinity();
   if (o.quick) until = std::min(until, scene->quick_until);
   const int last_step = scene->problem.step_reaching(until);
   auto results = newton.run([&](const nonlinear::StepResult& r) {
     if (table) table->add(r, *scene);
     if (iteration_table) iteration_table->add(r);
-    if (r.completes_step) write_checkpoint(out_dir + "/checkpoint.bin",
+    if (r.completes_step && writer) write_checkpoint(out_dir + "/checkpoint.bin",
                                               {scene->name, scene->level, newton.state(), newton.linear_tally()});
     if (contact_table && r.completes_step) contact_table->add(r, *scene, newton.displacement(), newton.multipliers());
-    if (scene->output.vtu && o.write_vtu && r.completes_step) {
+    if (scene->output.vtu && o.write_vtu && r.completes_step && writer) {
       const std::string name = fmt::format("step-{:03d}.vtu", r.step);
       write_vtu(out_dir + "/" + name, *scene, newton.displacement(), newton.multipliers(), r.time);
-      pvd.add(r.time, name);
+      pvd->add(r.time, name);
     }
-    if (!o.quiet)
+    if (verbose)
       fmt::print(stderr, "step {}/{}{}: t = {:.6g}, {} after {} Newton iterations, residual {:.3e} (reference {:.3e}), "
                  "{:.2f} s{}\n",
                  r.step, scene->problem.n_steps(), r.cut > 0 ? fmt::format(" (increment / {})", 1 << r.cut) : "",
@@ -134,26 +147,28 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
                  r.wall_seconds, r.retried ? "; retried over half the increment" : "");
   }, first_step, last_step);
   if (results.empty()) {
-    if (!o.quiet) fmt::print(stderr, "nothing to do: the run had completed load step {}\n", first_step - 1);
+    if (verbose) fmt::print(stderr, "nothing to do: the run had completed load step {}\n", first_step - 1);
     return;
   }
-  {
-    std::ofstream desc(out_dir + "/solver.txt");
-    desc << solver->describe();
-  }
+  const std::string description = solver->describe();  // collective: a KSP view
+  if (writer) std::ofstream(out_dir + "/solver.txt") << description;
   const auto& last = results.back();
   if (!o.metrics_path.empty()) {
     RunSummary summary{o.solver, solvers::default_options(o.solver) + o.petsc_options,
                        std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count(),
                        last.converged(), last.converged() ? "CONVERGED" : nonlinear::to_string(last.reason),
                        last.detail};
-    write_metrics(o.metrics_path, *scene, summary, results);
+    summary.processes = processes;
+    const double peak = peak_resident_mb();
+    MPI_Reduce(&peak, &summary.peak_rss_mb_max, 1, MPI_DOUBLE, MPI_MAX, 0, PETSC_COMM_WORLD);
+    MPI_Reduce(&peak, &summary.peak_rss_mb_sum, 1, MPI_DOUBLE, MPI_SUM, 0, PETSC_COMM_WORLD);
+    if (writer) write_metrics(o.metrics_path, *scene, summary, results);
   }
   if (!last.converged())
     throw Error(fmt::format("Newton did not converge at load step {} of scene '{}': {}{}{}", last.step, scene->name,
                             nonlinear::to_string(last.reason), last.detail.empty() ? "" : ": ", last.detail),
-                ErrorKind::Numerical);
-  if (!o.quiet) fmt::print(stderr, "results in {}\n", out_dir);
+                ErrorKind::Numerical, Reach::EveryProcess);
+  if (verbose) fmt::print(stderr, "results in {}\n", out_dir);
 }
 
 }  // namespace stiction::harness

@@ -17,10 +17,12 @@ struct BackendInfo {
   // Empty when usable in this build, else why not (a missing PETSc package).
   std::function<std::string()> unavailable_reason;
   std::function<std::unique_ptr<nonlinear::LinearSolver>(MPI_Comm)> create;
+  bool distributed = false;  // runs on a system distributed over several MPI processes
 };
 
 const std::vector<BackendInfo>& backends();
-// Throws stiction::Error listing the valid names for an unknown or unavailable backend.
+// Throws stiction::Error listing the valid names for an unknown or unavailable backend, or
+// for one that runs on one process when comm has several.
 std::unique_ptr<nonlinear::LinearSolver> create_solver(const std::string& name, MPI_Comm comm);
 // Names of every registered backend, comma separated.
 std::string backend_names();

@@ -63,14 +63,26 @@ double aij_storage_mb(Mat A) {
 }
 
 std::string full_view(KSP ksp) {
+  // The view is collective on the KSP's processes; rank 0 writes the file and reads it back.
+  MPI_Comm comm;
+  STICTION_PETSC(PetscObjectGetComm(reinterpret_cast<PetscObject>(ksp), &comm));
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
   char path[] = "/tmp/stiction-kspview-XXXXXX";
-  const int fd = mkstemp(path);
-  if (fd < 0) return "(KSP view unavailable)";
-  close(fd);
+  int ok = 1;
+  if (rank == 0) {
+    const int fd = mkstemp(path);
+    ok = fd >= 0;
+    if (ok) close(fd);
+  }
+  MPI_Bcast(&ok, 1, MPI_INT, 0, comm);
+  if (!ok) return "(KSP view unavailable)";
+  MPI_Bcast(path, sizeof(path), MPI_CHAR, 0, comm);
   PetscViewer viewer;
-  STICTION_PETSC(PetscViewerASCIIOpen(PETSC_COMM_SELF, path, &viewer));
+  STICTION_PETSC(PetscViewerASCIIOpen(comm, path, &viewer));
   STICTION_PETSC(KSPView(ksp, viewer));
   STICTION_PETSC(PetscViewerDestroy(&viewer));
+  if (rank != 0) return {};
   std::ifstream in(path);
   std::stringstream text;
   text << in.rdbuf();

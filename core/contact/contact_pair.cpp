@@ -238,6 +238,12 @@ std::vector<double> ContactPair::mean_normal_gaps(double t, const std::vector<do
   return gaps;
 }
 
+std::vector<int> ContactPair::multiplier_vertices() const {
+  std::vector<int> out;
+  for (int v : slave_.vertices) out.insert(out.end(), dim_, v);
+  return out;
+}
+
 std::vector<nonlinear::MultiplierNode> ContactPair::nodes(double t, const std::vector<double>& u,
                                                          const double* lambda) const {
   const std::vector<NodeKinematics>& kin = kinematics_at(t, u);

@@ -88,6 +88,7 @@ public:
 
   std::string name() const override { return name_; }
   int n_multipliers() const override { return slave_.n_nodes() * dim_; }
+  std::vector<int> multiplier_vertices() const override;
   void begin_increment(double t_start, const std::vector<double>& u) override;
   void evaluate(double t, const std::vector<double>& u, const double* lambda, std::vector<double>& r_u, double* r_c,
                 nonlinear::SparseEntries* jacobian, PetscInt offset) const override;

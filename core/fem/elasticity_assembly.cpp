@@ -100,7 +100,8 @@ CellMap<D> map_of_cell(const FieldSpace& space, int c, const int* nodes, const d
 
 template <int D, int NB>
 InternalForceStatus internal_kernel(const FieldSpace& space, const std::vector<const materials::Material*>& mat,
-                                    const std::vector<double>& u, std::vector<double>* residual, StiffnessMatrix* tangent) {
+                                    const std::vector<double>& u, std::vector<double>* residual, StiffnessMatrix* tangent,
+                                    const std::vector<int>* cells) {
   constexpr int ND = NB * D, NP = D + 1, MD = ND + NP;  // element dofs: u, then (mixed) p
   const Tabulation tab = tabulate(D, space.kind(), 2);  // nodal and hierarchical P2 share NB
   const std::vector<double> node_gradients = NB > D + 1 ? gradients_at_nodes(D, space.kind()) : std::vector<double>{};
@@ -115,7 +116,9 @@ InternalForceStatus internal_kernel(const FieldSpace& space, const std::vector<c
   materials::Tangent A;
   Mat3 P;
 
-  for (int c = 0; c < mesh.n_cells(); ++c) {
+  const int n_cells = cells ? static_cast<int>(cells->size()) : mesh.n_cells();
+  for (int k = 0; k < n_cells; ++k) {
+    const int c = cells ? (*cells)[k] : k;
     const double kappa = mat[c]->mixed_bulk_modulus();
     const int np = kappa > 0 ? NP : 0, m = ND + np;
     space.cell_nodes(c, nodes);
@@ -278,9 +281,10 @@ void subtract_load(const FieldSpace& space, int sd, const std::vector<std::vecto
 
 InternalForceStatus assemble_internal(const FieldSpace& space,
                                       const std::vector<const materials::Material*>& cell_material,
-                                      const std::vector<double>& u, std::vector<double>* residual, StiffnessMatrix* tangent) {
+                                      const std::vector<double>& u, std::vector<double>* residual, StiffnessMatrix* tangent,
+                                      const std::vector<int>* cells) {
   return dispatch(space, [&](auto D, auto NB) {
-    return internal_kernel<decltype(D)::value, decltype(NB)::value>(space, cell_material, u, residual, tangent);
+    return internal_kernel<decltype(D)::value, decltype(NB)::value>(space, cell_material, u, residual, tangent, cells);
   });
 }
 

@@ -24,11 +24,12 @@ struct InternalForceStatus {
 // Adds the internal force vector (residual may be null) and the tangent (tangent may be
 // null; values are added between its begin_assembly and end_assembly, which the caller
 // calls) for the coefficient vector u.
-// cell_material[c] is the law of cell c.
+// cell_material[c] is the law of cell c. With cells, only those cells (a rank's share of
+// the mesh, fem::MeshPartition) are assembled; the status names the first of them that fails.
 InternalForceStatus assemble_internal(const FieldSpace& space,
                                       const std::vector<const materials::Material*>& cell_material,
                                       const std::vector<double>& u, std::vector<double>* residual,
-                                      StiffnessMatrix* tangent);
+                                      StiffnessMatrix* tangent, const std::vector<int>* cells = nullptr);
 
 // residual -= int_Omega f N_a (f may vary in space).
 void subtract_body_force(const FieldSpace& space, const VectorField& f, std::vector<double>& residual);

@@ -7,11 +7,29 @@
 
 namespace stiction::fem {
 
-StiffnessMatrix::StiffnessMatrix(MPI_Comm comm, const FieldSpace& space) : space_(&space), dim_(space.dim()) {
+StiffnessMatrix::StiffnessMatrix(MPI_Comm comm, const FieldSpace& space) : space_(&space), dim_(space.dim()), comm_(comm) {
   int size = 1;
   MPI_Comm_size(comm, &size);
-  if (size != 1) throw Error("stiction runs on one MPI rank for now (the mesh is not distributed yet)");
-  const int nn = space.n_nodes(), npc = space.nodes_per_cell(), nc = space.mesh().n_cells(), d = dim_;
+  if (size != 1) throw Error("stiffness matrix: several ranks need a DofLayout", ErrorKind::Internal);
+  build_node_graph();
+  build_row_starts();
+  create_matrix();
+}
+
+StiffnessMatrix::StiffnessMatrix(const DofLayout& layout, const FieldSpace& space)
+    : space_(&space), layout_(&layout), dim_(space.dim()), comm_(layout.comm()) {
+  build_node_graph();
+  if (distributed()) {
+    create_distributed_matrix();
+    return;
+  }
+  build_row_starts();
+  create_matrix();
+}
+
+void StiffnessMatrix::build_node_graph() {
+  const FieldSpace& space = *space_;
+  const int nn = space.n_nodes(), npc = space.nodes_per_cell(), nc = space.mesh().n_cells();
   const int nv = space.n_vertices();
 
   // Node -> cells incidence, then each node's sorted, unique neighbours.
@@ -44,7 +62,11 @@ StiffnessMatrix::StiffnessMatrix(MPI_Comm comm, const FieldSpace& space) : space
     const int v = n < nv ? n : space.edges().edges[n - nv][0];
     mixed_[n] = space.pressure_dof(v) >= 0;
   }
+}
 
+void StiffnessMatrix::build_row_starts() {
+  const FieldSpace& space = *space_;
+  const int nn = space.n_nodes(), nv = space.n_vertices(), d = dim_;
   // Row lengths in global row order: displacement rows, then pressure rows.
   const PetscInt n_rows = space.n_dofs();
   std::vector<PetscInt> nnz(n_rows);
@@ -57,8 +79,6 @@ StiffnessMatrix::StiffnessMatrix(MPI_Comm comm, const FieldSpace& space) : space
   for (PetscInt r = 0; r < n_rows; ++r) (*row_start)[r + 1] = (*row_start)[r] + nnz[r];
   std::vector<PetscInt>().swap(nnz);
   row_start_ = std::move(row_start);
-  comm_ = comm;
-  create_matrix();
 }
 
 void StiffnessMatrix::build_columns() {
@@ -82,6 +102,38 @@ void StiffnessMatrix::build_columns() {
   columns_ = std::move(columns);
 }
 
+void StiffnessMatrix::create_distributed_matrix() {
+  const DofLayout& L = *layout_;
+  const PetscInt first = L.first_owned(), n_owned = L.n_owned(), n_total = L.n_total();
+  const int nn = space_->n_nodes(), nv = space_->n_vertices();
+  std::vector<PetscInt> d_nnz(n_owned, 0), o_nnz(n_owned, 0), cols;
+  for (int a = 0; a < nn; ++a) {
+    if (!L.owns(static_cast<PetscInt>(a) * dim_)) continue;
+    row_columns(a, cols);
+    PetscInt on_rank = 0;
+    for (PetscInt c : cols) {
+      const PetscInt g = L.global(c);
+      on_rank += g >= first && g < first + n_owned;
+    }
+    auto set = [&](PetscInt app_row) {
+      const PetscInt r = L.global(app_row) - first;
+      d_nnz[r] = on_rank;
+      o_nnz[r] = static_cast<PetscInt>(cols.size()) - on_rank;
+    };
+    for (int i = 0; i < dim_; ++i) set(static_cast<PetscInt>(a) * dim_ + i);
+    if (a < nv && space_->pressure_dof(a) >= 0) set(space_->pressure_dof(a));
+  }
+  // The row lengths came from the whole node graph: the per-node graph is not kept.
+  std::vector<int>().swap(neighbours_);
+  std::vector<int>().swap(offsets_);
+  std::vector<int>().swap(vertex_degree_);
+  STICTION_PETSC(MatCreate(comm_, A_.out()));
+  STICTION_PETSC(MatSetSizes(A_, n_owned, n_owned, n_total, n_total));
+  STICTION_PETSC(MatSetType(A_, MATMPIAIJ));
+  if (n_owned % block_size() == 0 && n_total % block_size() == 0) STICTION_PETSC(MatSetBlockSize(A_, block_size()));
+  STICTION_PETSC(MatMPIAIJSetPreallocation(A_, 0, d_nnz.data(), 0, o_nnz.data()));
+}
+
 void StiffnessMatrix::create_matrix() {
   const PetscInt n_rows = static_cast<PetscInt>(row_start_->size()) - 1;
   if (!columns_) build_columns();
@@ -95,6 +147,7 @@ void StiffnessMatrix::create_matrix() {
 }
 
 CsrArrays StiffnessMatrix::take_arrays() {
+  if (distributed()) throw Error("stiffness matrix: a distributed matrix has no arrays to hand over", ErrorKind::Internal);
   if (!A_) throw Error("stiffness matrix: nothing assembled to hand over", ErrorKind::Internal);
   PetscInt references;
   STICTION_PETSC(PetscObjectGetReference(reinterpret_cast<PetscObject>(A_.get()), &references));
@@ -117,6 +170,10 @@ void StiffnessMatrix::row_columns(int a, std::vector<PetscInt>& cols) const {
 }
 
 void StiffnessMatrix::begin_assembly() {
+  if (distributed()) {
+    STICTION_PETSC(MatZeroEntries(A_));
+    return;
+  }
   if (!A_)
     create_matrix();
   else
@@ -125,6 +182,7 @@ void StiffnessMatrix::begin_assembly() {
 }
 
 void StiffnessMatrix::add(const int* nodes, int n_nodes, int n_pressure_nodes, const double* Ke) {
+  if (distributed()) return add_distributed(nodes, n_nodes, n_pressure_nodes, Ke);
   const int d = dim_, m = n_nodes * d + n_pressure_nodes;
   const std::vector<PetscInt>& row_start = *row_start_;
   for (int a = 0; a < n_nodes; ++a) {
@@ -147,8 +205,17 @@ void StiffnessMatrix::add(const int* nodes, int n_nodes, int n_pressure_nodes, c
   }
 }
 
+void StiffnessMatrix::add_distributed(const int* nodes, int n_nodes, int n_pressure_nodes, const double* Ke) {
+  PetscInt idx[64];
+  const int d = dim_, m = n_nodes * d + n_pressure_nodes;
+  for (int a = 0; a < n_nodes; ++a)
+    for (int i = 0; i < d; ++i) idx[a * d + i] = layout_->global(static_cast<PetscInt>(nodes[a]) * d + i);
+  for (int a = 0; a < n_pressure_nodes; ++a) idx[n_nodes * d + a] = layout_->global(space_->pressure_dof(nodes[a]));
+  STICTION_PETSC(MatSetValues(A_, m, idx, m, idx, Ke, ADD_VALUES));
+}
+
 void StiffnessMatrix::end_assembly() {
-  STICTION_PETSC(MatSeqAIJRestoreArray(A_, &values_));
+  if (!distributed()) STICTION_PETSC(MatSeqAIJRestoreArray(A_, &values_));
   values_ = nullptr;
   STICTION_PETSC(MatAssemblyBegin(A_, MAT_FINAL_ASSEMBLY));
   STICTION_PETSC(MatAssemblyEnd(A_, MAT_FINAL_ASSEMBLY));

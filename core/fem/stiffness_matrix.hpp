@@ -14,6 +14,12 @@
 // sequential AIJ value array. The pattern (row starts and columns) is built once, node by
 // node, and is the matrix's own storage (seq_aij_over), so no second copy of it exists.
 //
+// On several MPI ranks (a DofLayout that is not the identity) the matrix is PETSc's MPIAIJ
+// in the layout's numbering, preallocated from the node graph for the owned rows; each
+// rank adds the element matrices of its own cells by MatSetValues, and the rows that
+// belong to another rank travel in PETSc's stash at end_assembly(). Its size is the whole
+// system's (the multiplier rows, owned by the slave nodes' ranks, stay empty here).
+//
 // take_arrays() hands the assembled matrix over (a contact system merges its blocks into
 // its values, see build_augmented_matrix), so the tangent and the augmented matrix do not
 // both exist; the next begin_assembly() writes the pattern again and makes a fresh matrix.
@@ -22,13 +28,15 @@
 
 #include "common/csr_matrix.hpp"
 #include "common/petsc.hpp"
+#include "fem/dof_layout.hpp"
 #include "fem/field_space.hpp"
 
 namespace stiction::fem {
 
 class StiffnessMatrix {
 public:
-  StiffnessMatrix(MPI_Comm comm, const FieldSpace& space);
+  StiffnessMatrix(MPI_Comm comm, const FieldSpace& space);  // one rank
+  StiffnessMatrix(const DofLayout& layout, const FieldSpace& space);
 
   Mat mat() const { return A_; }  // null after take_arrays() until the next begin_assembly()
   PetscInt block_size() const { return space_->has_pressure() ? 1 : dim_; }
@@ -40,15 +48,22 @@ public:
   void add(const int* nodes, int n_nodes, int n_pressure_nodes, const double* Ke);
   void end_assembly();
   // The assembled matrix's arrays; this object drops the matrix and forgets the values.
+  // One rank only: on several, the augmented matrix is built from mat().
   CsrArrays take_arrays();
+  bool distributed() const { return layout_ && !layout_->identity(); }
 
 private:
   int degree(int node) const { return offsets_[node + 1] - offsets_[node]; }
   void row_columns(int node, std::vector<PetscInt>& cols) const;
+  void build_node_graph();
+  void build_row_starts();
   void build_columns();
   void create_matrix();
+  void create_distributed_matrix();
+  void add_distributed(const int* nodes, int n_nodes, int n_pressure_nodes, const double* Ke);
 
   const FieldSpace* space_;
+  const DofLayout* layout_ = nullptr;
   int dim_;
   std::vector<int> offsets_, neighbours_;  // node graph, CSR, neighbours sorted
   std::vector<int> vertex_degree_;         // neighbours that are vertices (a prefix)

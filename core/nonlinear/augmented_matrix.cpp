@@ -118,6 +118,70 @@ Mat build_augmented_matrix(MPI_Comm comm, CsrArrays tangent, PetscInt m, const S
   return M;
 }
 
+namespace {
+
+// Calls put(row, n, cols, values) for every owned row of the tangent, every owned diagonal
+// of a multiplier row and every owned entry of extra, in PETSc's numbering.
+template <class Put>
+void visit_owned_entries(Mat tangent, const fem::DofLayout& layout, PetscInt n_u, const SparseEntries& extra,
+                         Put&& put) {
+  const PetscInt first = layout.first_owned(), last = first + layout.n_owned();
+  for (PetscInt r = first; r < last; ++r) {
+    PetscInt n;
+    const PetscInt* cols;
+    const PetscScalar* values;
+    STICTION_PETSC(MatGetRow(tangent, r, &n, &cols, &values));
+    if (n > 0) put(r, n, cols, values);
+    STICTION_PETSC(MatRestoreRow(tangent, r, &n, &cols, &values));
+  }
+  const PetscScalar zero = 0;
+  for (PetscInt a = n_u; a < layout.n_total(); ++a)
+    if (layout.owns(a)) {
+      const PetscInt g = layout.global(a);
+      put(g, 1, &g, &zero);
+    }
+  for (size_t k = 0; k < extra.size(); ++k)
+    if (layout.owns(extra.rows[k])) {
+      const PetscInt r = layout.global(extra.rows[k]), c = layout.global(extra.cols[k]);
+      put(r, 1, &c, &extra.values[k]);
+    }
+}
+
+}  // namespace
+
+Mat build_distributed_augmented_matrix(Mat tangent, const fem::DofLayout& layout, PetscInt n_u,
+                                       const SparseEntries& extra, PetscInt block_size) {
+  const MPI_Comm comm = layout.comm();
+  const PetscInt n_owned = layout.n_owned(), n_total = layout.n_total();
+  std::vector<PetscScalar> zeros;
+  PetscMat pattern;
+  STICTION_PETSC(MatCreate(comm, pattern.out()));
+  STICTION_PETSC(MatSetSizes(pattern, n_owned, n_owned, n_total, n_total));
+  STICTION_PETSC(MatSetType(pattern, MATPREALLOCATOR));
+  STICTION_PETSC(MatSetUp(pattern));
+  visit_owned_entries(tangent, layout, n_u, extra,
+                      [&](PetscInt r, PetscInt n, const PetscInt* cols, const PetscScalar*) {
+                        if (zeros.size() < static_cast<size_t>(n)) zeros.resize(n, 0.0);
+                        STICTION_PETSC(MatSetValues(pattern, 1, &r, n, cols, zeros.data(), INSERT_VALUES));
+                      });
+  STICTION_PETSC(MatAssemblyBegin(pattern, MAT_FINAL_ASSEMBLY));
+  STICTION_PETSC(MatAssemblyEnd(pattern, MAT_FINAL_ASSEMBLY));
+  Mat A;
+  STICTION_PETSC(MatCreate(comm, &A));
+  STICTION_PETSC(MatSetSizes(A, n_owned, n_owned, n_total, n_total));
+  STICTION_PETSC(MatSetType(A, MATMPIAIJ));
+  if (block_size > 1 && n_owned % block_size == 0 && n_total % block_size == 0)
+    STICTION_PETSC(MatSetBlockSize(A, block_size));
+  STICTION_PETSC(MatPreallocatorPreallocate(pattern, PETSC_TRUE, A));
+  visit_owned_entries(tangent, layout, n_u, extra,
+                      [&](PetscInt r, PetscInt n, const PetscInt* cols, const PetscScalar* values) {
+                        STICTION_PETSC(MatSetValues(A, 1, &r, n, cols, values, ADD_VALUES));
+                      });
+  STICTION_PETSC(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+  STICTION_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  return A;
+}
+
 Mat build_sparse_matrix(MPI_Comm comm, PetscInt m, const SparseEntries& entries) {
   CompressedRows e = compress(m, entries, 0);
   return seq_aij_over(comm, m,

@@ -6,6 +6,7 @@
 // the tangent and the augmented matrix never both exist in full.
 #include "common/csr_matrix.hpp"
 #include "common/petsc.hpp"
+#include "fem/dof_layout.hpp"
 #include "nonlinear/multiplier_constraint.hpp"
 
 namespace stiction::nonlinear {
@@ -17,6 +18,14 @@ namespace stiction::nonlinear {
 // matrix over it any more. block_size is kept when m is a multiple of it.
 Mat build_augmented_matrix(MPI_Comm comm, CsrArrays tangent, PetscInt m, const SparseEntries& extra,
                            PetscInt block_size);
+
+// On several ranks: the distributed tangent (the whole system's size, in the layout's
+// numbering, multiplier rows empty) bordered by the entries of extra (app numbering, the
+// same on every rank) whose rows this rank owns, as a new MPIAIJ matrix preallocated by
+// PETSc's MATPREALLOCATOR. The tangent is copied: both exist until the caller drops it.
+// n_u: the first multiplier unknown (its rows get their diagonal, as above).
+Mat build_distributed_augmented_matrix(Mat tangent, const fem::DofLayout& layout, PetscInt n_u,
+                                       const SparseEntries& extra, PetscInt block_size);
 
 // A sparse m x m matrix from entries whose indices are already in [0, m).
 Mat build_sparse_matrix(MPI_Comm comm, PetscInt m, const SparseEntries& entries);

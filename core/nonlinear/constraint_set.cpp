@@ -11,6 +11,15 @@ ConstraintSet::ConstraintSet(const std::vector<MultiplierConstraint*>& constrain
   }
 }
 
+std::vector<int> ConstraintSet::multiplier_vertices() const {
+  std::vector<int> out;
+  for (const auto* c : constraints_) {
+    const std::vector<int> v = c->multiplier_vertices();
+    out.insert(out.end(), v.begin(), v.end());
+  }
+  return out;
+}
+
 void ConstraintSet::begin_increment(double t_start, const std::vector<double>& u) {
   for (auto* c : constraints_) c->begin_increment(t_start, u);
 }

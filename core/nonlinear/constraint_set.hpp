@@ -17,6 +17,8 @@ public:
 
   bool empty() const { return n_multipliers_ == 0; }
   PetscInt n_multipliers() const { return n_multipliers_; }
+  // The mesh vertex of every multiplier, in the multipliers' order.
+  std::vector<int> multiplier_vertices() const;
   size_t size() const { return constraints_.size(); }
 
   void begin_increment(double t_start, const std::vector<double>& u);

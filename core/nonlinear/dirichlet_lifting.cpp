@@ -58,16 +58,21 @@ void DirichletLifting::impose(std::vector<double>& u) const {
   for (size_t k = 0; k < constrained_.size(); ++k) u[constrained_[k]] = target_[k];
 }
 
-void DirichletLifting::apply(Mat A, Vec rhs, const std::vector<double>& u, bool lift) const {
+void DirichletLifting::apply(const fem::DofLayout& layout, Mat A, Vec rhs, const std::vector<double>& u,
+                             bool lift) const {
   PetscVec x;
   STICTION_PETSC(VecDuplicate(rhs, x.out()));
   STICTION_PETSC(VecZeroEntries(x));
-  if (lift)
-    for (size_t k = 0; k < constrained_.size(); ++k)
-      STICTION_PETSC(VecSetValue(x, constrained_[k], target_[k] - u[constrained_[k]], INSERT_VALUES));
+  std::vector<PetscInt> rows;
+  rows.reserve(constrained_.size());
+  for (size_t k = 0; k < constrained_.size(); ++k) {
+    if (!layout.owns(constrained_[k])) continue;
+    rows.push_back(layout.global(constrained_[k]));
+    if (lift) STICTION_PETSC(VecSetValue(x, rows.back(), target_[k] - u[constrained_[k]], INSERT_VALUES));
+  }
   STICTION_PETSC(VecAssemblyBegin(x));
   STICTION_PETSC(VecAssemblyEnd(x));
-  STICTION_PETSC(MatZeroRowsColumns(A, static_cast<PetscInt>(constrained_.size()), constrained_.data(), 1.0, x, rhs));
+  STICTION_PETSC(MatZeroRowsColumns(A, static_cast<PetscInt>(rows.size()), rows.data(), 1.0, x, rhs));
 }
 
 double DirichletLifting::free_norm(const std::vector<double>& r) const {
@@ -77,12 +82,10 @@ double DirichletLifting::free_norm(const std::vector<double>& r) const {
   return std::sqrt(s);
 }
 
-double DirichletLifting::free_norm(Vec v) const {
-  std::vector<double> b(is_constrained_.size());
-  const PetscScalar* a;
-  STICTION_PETSC(VecGetArrayRead(v, &a));
-  std::copy(a, a + b.size(), b.begin());
-  STICTION_PETSC(VecRestoreArrayRead(v, &a));
+double DirichletLifting::free_norm(const fem::DofLayout& layout, Vec v) const {
+  std::vector<double> b;
+  layout.gather(v, b);
+  b.resize(is_constrained_.size());
   return free_norm(b);
 }
 

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "common/petsc.hpp"
+#include "fem/dof_layout.hpp"
 #include "nonlinear/problem.hpp"
 
 namespace stiction::nonlinear {
@@ -30,11 +31,12 @@ public:
   void impose(std::vector<double>& u) const;
   // Constrained rows and columns of A become identity; with lift, the prescribed increment
   // (targets - u) goes into rhs on them and, through the removed columns, into the free rows.
-  void apply(Mat A, Vec rhs, const std::vector<double>& u, bool lift) const;
+  // A and rhs are in the layout's numbering; each rank zeroes the rows it owns.
+  void apply(const fem::DofLayout& layout, Mat A, Vec rhs, const std::vector<double>& u, bool lift) const;
 
   // 2-norm over the free dofs of a displacement-sized vector (or the leading part of one).
   double free_norm(const std::vector<double>& r) const;
-  double free_norm(Vec v) const;
+  double free_norm(const fem::DofLayout& layout, Vec v) const;
   // Total force per Dirichlet condition: sum of w_n r_n over its nodes, w the coefficients
   // of the constant 1 in the space's basis.
   std::map<std::string, std::array<double, 3>> reactions(const std::vector<double>& r) const;

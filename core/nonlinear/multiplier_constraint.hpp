@@ -54,6 +54,9 @@ public:
   virtual ~MultiplierConstraint() = default;
   virtual std::string name() const = 0;
   virtual int n_multipliers() const = 0;
+  // The mesh vertex (slave node) each multiplier belongs to, n_multipliers() entries: the
+  // rank that owns the vertex owns the multiplier's row (fem::DofLayout).
+  virtual std::vector<int> multiplier_vertices() const = 0;
   // At the start of a load increment from pseudo-time t_start, u is the converged state there:
   // the reference of the tangential slip increments (15)-(16).
   virtual void begin_increment(double t_start, const std::vector<double>& u) = 0;

@@ -88,7 +88,9 @@ QuasiStaticSolver::QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& pro
       linear_(linear),
       lifting_(problem),
       constraints_(problem.constraints),
-      builder_(comm, problem, constraints_.n_multipliers()),
+      partition_(fem::partition_cells(comm, problem.space->mesh())),
+      layout_(comm, *problem.space, partition_, constraints_.multiplier_vertices()),
+      builder_(layout_, problem, constraints_.n_multipliers()),
       u_(problem.space->n_dofs(), 0.0),
       lambda_(constraints_.n_multipliers(), 0.0) {}
 
@@ -96,7 +98,18 @@ fem::InternalForceStatus QuasiStaticSolver::residual(double t, const std::vector
                                                      std::vector<double>& r) const {
   const fem::FieldSpace& space = *problem_.space;
   r.assign(space.n_dofs(), 0.0);
-  auto status = fem::assemble_internal(space, problem_.cell_material, u, &r, nullptr);
+  if (partition_.whole()) return add_loads(t, r, fem::assemble_internal(space, problem_.cell_material, u, &r, nullptr));
+  // Each rank integrates its own cells; the sum is the whole residual on every rank.
+  auto status = fem::assemble_internal(space, problem_.cell_material, u, &r, nullptr, &partition_.owned_cells);
+  fem::sum_over_ranks(layout_.comm(), r);
+  status.inverted_cell = fem::first_cell_over_ranks(layout_.comm(), status.inverted_cell);
+  status.folded_cell = fem::first_cell_over_ranks(layout_.comm(), status.folded_cell);
+  return add_loads(t, r, status);
+}
+
+fem::InternalForceStatus QuasiStaticSolver::add_loads(double t, std::vector<double>& r,
+                                                      fem::InternalForceStatus status) const {
+  const fem::FieldSpace& space = *problem_.space;
   if (problem_.body_force)
     fem::subtract_body_force(space, [&](const double* X, double* out) { problem_.body_force(X, t, out); }, r);
   for (const auto& load : problem_.tractions)
@@ -136,11 +149,10 @@ void QuasiStaticSolver::report_state_changes(int step, int iteration, double t, 
 }
 
 void QuasiStaticSolver::split_update(Vec du, std::vector<double>& dv, std::vector<double>& dl) const {
-  const PetscScalar* a;
-  STICTION_PETSC(VecGetArrayRead(du, &a));
-  std::copy(a, a + dv.size(), dv.begin());
-  std::copy(a + dv.size(), a + dv.size() + dl.size(), dl.begin());
-  STICTION_PETSC(VecRestoreArrayRead(du, &a));
+  std::vector<double> whole;
+  layout_.gather(du, whole);
+  std::copy(whole.begin(), whole.begin() + dv.size(), dv.begin());
+  std::copy(whole.begin() + dv.size(), whole.begin() + dv.size() + dl.size(), dl.begin());
 }
 
 QuasiStaticSolver::TrialStep QuasiStaticSolver::take_step(double t_target, const std::vector<double>& dv,
@@ -251,11 +263,11 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
   double asm_seconds = seconds_since(t0);
   if (st0.inverted_cell >= 0)
     throw Error(fmt::format("load step {}: {} is inverted at the start of the step", step, describe_cell(st0.inverted_cell)),
-                ErrorKind::Numerical);
+                ErrorKind::Numerical, Reach::EveryProcess);
   if (st0.folded_cell >= 0)
     throw Error(fmt::format("load step {}: {} is folded (det F <= 0 at one of its nodes) at the start of the step",
                             step, describe_cell(st0.folded_cell)),
-                ErrorKind::Numerical);
+                ErrorKind::Numerical, Reach::EveryProcess);
   // A folded cell (fem::InternalForceStatus) may be crossed by Newton's iterates, which
   // leave it again on the way to a valid solution (measured on the frictional ironing at
   // level 1: refusing folded iterates stopped the run at t = 1.18, where every converged
@@ -319,7 +331,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
     t0 = std::chrono::steady_clock::now();
     assemble_system(r, pending);
     rec.assembly_seconds = asm_seconds + seconds_since(t0);
-    if (it == 0) res.reference_residual = std::max(rnorm, lifting_.free_norm(builder_.system().rhs));
+    if (it == 0) res.reference_residual = std::max(rnorm, lifting_.free_norm(layout_, builder_.system().rhs));
 
     linear_.setup(builder_.system());
     if (settings_.forcing == Forcing::EisenstatWalker) {

@@ -30,7 +30,9 @@
 #include <string>
 #include <vector>
 
+#include "fem/dof_layout.hpp"
 #include "fem/elasticity_assembly.hpp"
+#include "fem/mesh_partition.hpp"
 #include "nonlinear/active_set_monitor.hpp"
 #include "nonlinear/constraint_set.hpp"
 #include "nonlinear/dirichlet_lifting.hpp"
@@ -147,8 +149,9 @@ public:
   const std::vector<double>& multipliers() const { return lambda_; }
   // Full residual r(u) = f_int - f_ext at pseudo-time t (constrained rows included), and status.
   fem::InternalForceStatus residual(double t, const std::vector<double>& u, std::vector<double>& r) const;
-  // The last assembled Newton system (for record/replay and tests).
+  // The last assembled Newton system (for record/replay and tests), in layout()'s numbering.
   const NewtonSystem& system() const { return builder_.system(); }
+  const fem::DofLayout& layout() const { return layout_; }
   // Called after every linear solve with the system, the increment found and its figures
   // (record/replay hooks in here).
   using SystemObserver =
@@ -168,6 +171,8 @@ public:
 
 private:
   struct Residuals;
+  // residual's dead loads (body force, tractions), added once the cells are summed.
+  fem::InternalForceStatus add_loads(double t, std::vector<double>& r, fem::InternalForceStatus status) const;
   // Elastic part and constraint part of the residual at (u, lambda).
   fem::InternalForceStatus evaluate(double t, const std::vector<double>& u, const std::vector<double>& lambda,
                                     Residuals& r) const;
@@ -211,6 +216,8 @@ private:
   LinearSolver& linear_;
   DirichletLifting lifting_;
   ConstraintSet constraints_;
+  fem::MeshPartition partition_;  // the cells this rank assembles
+  fem::DofLayout layout_;         // the Newton system's numbering across ranks
   NewtonSystemBuilder builder_;
   std::vector<double> u_;
   std::vector<double> lambda_;  // contact multipliers (augmented unknowns n_u..)

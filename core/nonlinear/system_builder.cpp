@@ -8,18 +8,9 @@
 
 namespace stiction::nonlinear {
 
-namespace {
-
-void copy_to_vec(const std::vector<double>& src, Vec dst) {
-  PetscScalar* a;
-  STICTION_PETSC(VecGetArray(dst, &a));
-  std::copy(src.begin(), src.end(), a);
-  STICTION_PETSC(VecRestoreArray(dst, &a));
-}
-
-}  // namespace
-
-MatNullSpace rigid_body_modes(MPI_Comm comm, const fem::FieldSpace& space, int n_extra) {
+MatNullSpace rigid_body_modes(const fem::DofLayout& layout, const fem::FieldSpace& space) {
+  const MPI_Comm comm = layout.comm();
+  const int n_extra = static_cast<int>(layout.n_total()) - space.n_dofs();
   const int d = space.dim();
   const mesh::Mesh& m = space.mesh();
   double c[3] = {0, 0, 0};  // rotate about the centroid: better-conditioned modes
@@ -59,12 +50,12 @@ MatNullSpace rigid_body_modes(MPI_Comm comm, const fem::FieldSpace& space, int n
     for (double& v : modes[i]) v /= nrm;
   }
   std::vector<Vec> vecs(n_modes);
-  const int n = space.n_dofs() + n_extra;
+  const bool blocked = !space.has_pressure() && n_extra % d == 0 && layout.n_owned() % d == 0;
   for (int i = 0; i < n_modes; ++i) {
-    modes[i].resize(n, 0.0);
-    STICTION_PETSC(VecCreateMPI(comm, n, n, &vecs[i]));
-    STICTION_PETSC(VecSetBlockSize(vecs[i], space.has_pressure() || n_extra % d ? 1 : d));
-    copy_to_vec(modes[i], vecs[i]);
+    modes[i].resize(layout.n_total(), 0.0);
+    vecs[i] = layout.create_vector();
+    STICTION_PETSC(VecSetBlockSize(vecs[i], blocked ? d : 1));
+    layout.scatter(modes[i], vecs[i]);
   }
   MatNullSpace nsp;
   STICTION_PETSC(MatNullSpaceCreate(comm, PETSC_FALSE, n_modes, vecs.data(), &nsp));
@@ -72,21 +63,25 @@ MatNullSpace rigid_body_modes(MPI_Comm comm, const fem::FieldSpace& space, int n
   return nsp;
 }
 
-NewtonSystemBuilder::NewtonSystemBuilder(MPI_Comm comm, const ElasticityProblem& problem, PetscInt n_multipliers)
-    : problem_(problem) {
+NewtonSystemBuilder::NewtonSystemBuilder(const fem::DofLayout& layout, const ElasticityProblem& problem,
+                                         PetscInt n_multipliers)
+    : layout_(layout), problem_(problem) {
   const fem::FieldSpace& space = *problem.space;
+  const MPI_Comm comm = layout.comm();
+  if (layout.n_total() != space.n_dofs() + n_multipliers)
+    throw Error("system builder: the layout does not number this system", ErrorKind::Internal);
   system_.comm = comm;
   system_.block_size = space.has_pressure() ? 1 : space.dim();
-  stiffness_ = std::make_unique<fem::StiffnessMatrix>(comm, space);
+  stiffness_ = std::make_unique<fem::StiffnessMatrix>(layout, space);
   STICTION_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(stiffness_->mat())));
   *system_.matrix.out() = stiffness_->mat();  // replaced by the augmented matrix with contact
-  const PetscInt n_total = space.n_dofs() + n_multipliers;
-  STICTION_PETSC(VecCreateMPI(comm, n_total, n_total, system_.rhs.out()));
+  const PetscInt n_total = layout.n_total();
+  *system_.rhs.out() = layout.create_vector();
   add_field("u_l", space.linear_block(), space.dim());
   if (fem::is_quadratic(space.kind())) add_field("u_q", space.quadratic_block(), space.dim());
   if (space.has_pressure()) add_field("p", space.pressure_block(), 1);
   if (n_multipliers > 0) add_field("lambda", {space.n_dofs(), static_cast<int>(n_total)}, space.dim());
-  if (space.has_pressure()) {
+  if (space.has_pressure() && layout.identity()) {
     *system_.pressure_mass.out() = fem::assemble_pressure_mass(comm, space);
     // alpha of MHP (11) from the (first) mixed law; the paper's scenes have one rubber body.
     for (const auto* m : problem.cell_material)
@@ -95,13 +90,19 @@ NewtonSystemBuilder::NewtonSystemBuilder(MPI_Comm comm, const ElasticityProblem&
         break;
       }
   }
-  *system_.near_null_space.out() = rigid_body_modes(comm, space, static_cast<int>(n_multipliers));
+  *system_.near_null_space.out() = rigid_body_modes(layout, space);
   STICTION_PETSC(MatSetNearNullSpace(system_.matrix, system_.near_null_space));
 }
 
 void NewtonSystemBuilder::add_field(const char* name, std::pair<int, int> range, int block_size) {
   FieldBlock f{name, {}, block_size};
-  STICTION_PETSC(ISCreateStride(system_.comm, range.second - range.first, range.first, 1, f.is.out()));
+  if (layout_.identity()) {
+    STICTION_PETSC(ISCreateStride(system_.comm, range.second - range.first, range.first, 1, f.is.out()));
+  } else {
+    const std::vector<PetscInt> owned = layout_.owned_indices(range.first, range.second);
+    STICTION_PETSC(ISCreateGeneral(system_.comm, static_cast<PetscInt>(owned.size()), owned.data(), PETSC_COPY_VALUES,
+                                   f.is.out()));
+  }
   STICTION_PETSC(ISSetBlockSize(f.is, block_size));
   system_.fields.push_back(std::move(f));
 }
@@ -111,14 +112,15 @@ void NewtonSystemBuilder::assemble(double t, const std::vector<double>& u, const
                                    const ConstraintSet& constraints, const DirichletLifting& lifting, bool lift) {
   if (!constraints.empty()) system_.matrix.reset();  // the caller released the backend's set-up on it
   stiffness_->begin_assembly();
-  fem::assemble_internal(*problem_.space, problem_.cell_material, u, nullptr, stiffness_.get());
+  fem::assemble_internal(*problem_.space, problem_.cell_material, u, nullptr, stiffness_.get(),
+                         layout_.identity() ? nullptr : &layout_.partition().owned_cells);
   stiffness_->end_assembly();
   if (!constraints.empty()) border_with_constraints(t, u, lambda, constraints);
   std::vector<double> b(r_u.size() + r_c.size());
   for (size_t i = 0; i < r_u.size(); ++i) b[i] = -r_u[i];
   for (size_t i = 0; i < r_c.size(); ++i) b[r_u.size() + i] = -r_c[i];
-  copy_to_vec(b, system_.rhs);
-  lifting.apply(system_.matrix, system_.rhs, u, lift);
+  layout_.scatter(b, system_.rhs);
+  lifting.apply(layout_, system_.matrix, system_.rhs, u, lift);
 }
 
 // The augmented matrix (30): the tangent bordered by -B^T, C_u and C_lambda, and the
@@ -129,6 +131,12 @@ void NewtonSystemBuilder::border_with_constraints(double t, const std::vector<do
   SparseEntries blocks, mass, surface_stiffness, slip_coupling;
   std::vector<double> scratch_u(n_u), scratch_c;
   constraints.evaluate(t, u, lambda, scratch_u, scratch_c, &blocks, n_u);
+  if (stiffness_->distributed()) {
+    *system_.matrix.out() =
+        build_distributed_augmented_matrix(stiffness_->mat(), layout_, n_u, blocks, stiffness_->block_size());
+    STICTION_PETSC(MatSetNearNullSpace(system_.matrix, system_.near_null_space));
+    return;
+  }
   constraints.schur_parts(mass, surface_stiffness, slip_coupling);
   *system_.matrix.out() = build_augmented_matrix(system_.comm, stiffness_->take_arrays(), m, blocks,
                                                  stiffness_->block_size());

@@ -5,6 +5,11 @@
 // space and, for the preconditioners that use them, the pressure mass matrix with alpha of
 // MHP (11) and the parts of the multiplier Schur approximation (32).
 //
+// The system lives in the DofLayout's numbering: on one rank that is stiction's own, on
+// several the matrix and vectors are distributed, each rank assembles its own cells and
+// the rows of the contact blocks it owns. The preconditioner parts that the hand-built
+// Schur backends read (pressure mass, multiplier Schur parts) exist on one rank only.
+//
 // Without contact the tangent keeps one matrix over its pattern for the whole run; with
 // contact each system is a new matrix (the constraint blocks change pattern with the
 // states), so the caller releases the backend's set-up on the old one before assemble().
@@ -21,7 +26,7 @@ namespace stiction::nonlinear {
 
 class NewtonSystemBuilder {
 public:
-  NewtonSystemBuilder(MPI_Comm comm, const ElasticityProblem& problem, PetscInt n_multipliers);
+  NewtonSystemBuilder(const fem::DofLayout& layout, const ElasticityProblem& problem, PetscInt n_multipliers);
 
   // The system at (u, lambda) at pseudo-time t for the residual (r_u, r_c) there; with lift,
   // the constrained dofs' increment to the lifting's targets enters it.
@@ -36,6 +41,7 @@ private:
   void border_with_constraints(double t, const std::vector<double>& u, const std::vector<double>& lambda,
                                const ConstraintSet& constraints);
 
+  const fem::DofLayout& layout_;
   const ElasticityProblem& problem_;
   std::unique_ptr<fem::StiffnessMatrix> stiffness_;
   NewtonSystem system_;  // its matrix: stiffness_'s, or with contact the augmented matrix built from it
@@ -43,7 +49,7 @@ private:
 
 // Rigid-body modes of the space (translations, rotations about the centroid) interpolated in
 // its basis and orthonormalised: the near-null space handed to AMG.
-// n_extra zero entries follow (the multipliers of a contact system).
-MatNullSpace rigid_body_modes(MPI_Comm comm, const fem::FieldSpace& space, int n_extra = 0);
+// The layout's unknowns beyond the space's (the multipliers of a contact system) are zero.
+MatNullSpace rigid_body_modes(const fem::DofLayout& layout, const fem::FieldSpace& space);
 
 }  // namespace stiction::nonlinear

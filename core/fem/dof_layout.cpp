@@ -1,0 +1,84 @@
+#include "fem/dof_layout.hpp"
+
+#include <algorithm>
+#include <numeric>
+
+namespace stiction::fem {
+
+DofLayout::DofLayout(MPI_Comm comm, const FieldSpace& space, const MeshPartition& partition,
+                     const std::vector<int>& extra_vertices)
+    : comm_(comm), rank_(partition.rank), size_(partition.size), partition_(&partition) {
+  const int d = space.dim(), nn = space.n_nodes(), n_space = space.n_dofs();
+  n_total_ = n_space + static_cast<PetscInt>(extra_vertices.size());
+  if (identity()) return;
+  std::vector<int> node_owner(nn, -1), nodes(space.nodes_per_cell());
+  for (int c = 0; c < space.mesh().n_cells(); ++c) {
+    space.cell_nodes(c, nodes.data());
+    for (int n : nodes)
+      if (node_owner[n] < 0) node_owner[n] = partition.cell_owner[c];
+  }
+  owner_.assign(n_total_, 0);
+  for (int n = 0; n < nn; ++n)
+    for (int k = 0; k < d; ++k) owner_[static_cast<size_t>(n) * d + k] = node_owner[n];
+  for (int v = 0; v < space.n_vertices(); ++v)
+    if (space.pressure_dof(v) >= 0) owner_[space.pressure_dof(v)] = node_owner[v];
+  for (size_t k = 0; k < extra_vertices.size(); ++k) owner_[n_space + k] = node_owner[extra_vertices[k]];
+
+  // Rank by rank, app order within each rank.
+  std::vector<PetscInt> count(size_, 0);
+  for (int o : owner_) ++count[o];
+  std::vector<PetscInt> next(size_, 0);
+  for (int r = 1; r < size_; ++r) next[r] = next[r - 1] + count[r - 1];
+  first_owned_ = next[rank_];
+  global_.resize(n_total_);
+  for (PetscInt a = 0; a < n_total_; ++a) {
+    global_[a] = next[owner_[a]]++;
+    if (owner_[a] == rank_) owned_app_.push_back(a);
+  }
+}
+
+Vec DofLayout::create_vector() const {
+  Vec v;
+  STICTION_PETSC(VecCreateMPI(comm_, n_owned(), n_total_, &v));
+  return v;
+}
+
+void DofLayout::scatter(const std::vector<double>& values, Vec v) const {
+  PetscScalar* a;
+  STICTION_PETSC(VecGetArray(v, &a));
+  if (identity()) std::copy(values.begin(), values.begin() + std::min<size_t>(values.size(), n_total_), a);
+  for (size_t j = 0; j < owned_app_.size(); ++j)
+    if (static_cast<size_t>(owned_app_[j]) < values.size()) a[j] = values[owned_app_[j]];
+  STICTION_PETSC(VecRestoreArray(v, &a));
+}
+
+void DofLayout::gather(Vec v, std::vector<double>& values) const {
+  values.resize(n_total_);
+  const PetscScalar* a;
+  if (identity()) {
+    STICTION_PETSC(VecGetArrayRead(v, &a));
+    std::copy(a, a + n_total_, values.begin());
+    STICTION_PETSC(VecRestoreArrayRead(v, &a));
+    return;
+  }
+  if (!to_all_) STICTION_PETSC(VecScatterCreateToAll(v, to_all_.out(), whole_.out()));
+  STICTION_PETSC(VecScatterBegin(to_all_, v, whole_, INSERT_VALUES, SCATTER_FORWARD));
+  STICTION_PETSC(VecScatterEnd(to_all_, v, whole_, INSERT_VALUES, SCATTER_FORWARD));
+  STICTION_PETSC(VecGetArrayRead(whole_, &a));
+  for (PetscInt k = 0; k < n_total_; ++k) values[k] = a[global_[k]];
+  STICTION_PETSC(VecRestoreArrayRead(whole_, &a));
+}
+
+std::vector<PetscInt> DofLayout::owned_indices(PetscInt first, PetscInt last) const {
+  std::vector<PetscInt> out;
+  if (identity()) {
+    out.resize(last - first);
+    std::iota(out.begin(), out.end(), first);
+    return out;
+  }
+  for (PetscInt a : owned_app_)
+    if (a >= first && a < last) out.push_back(global(a));
+  return out;
+}
+
+}  // namespace stiction::fem

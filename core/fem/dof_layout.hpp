@@ -1,0 +1,60 @@
+#pragma once
+// The Newton system's numbering across MPI ranks. Its unknowns in stiction's own order
+// (the "app" order: displacement node by node, then pressures, then multipliers) stay the
+// numbering of every std::vector the Newton driver holds, whole on every rank; PETSc's
+// distributed matrix and vectors number them rank by rank instead, each rank's unknowns a
+// contiguous range, in app order within the rank. So on one rank the two numberings are
+// the same, and nothing is permuted.
+//
+// Ownership: a node belongs to the rank of the first cell (lowest index) that holds it,
+// its pressure and its multipliers follow it (the multiplier rows stay on the rank that
+// owns the slave node).
+#include <memory>
+#include <vector>
+
+#include "common/petsc.hpp"
+#include "fem/field_space.hpp"
+#include "fem/mesh_partition.hpp"
+
+namespace stiction::fem {
+
+class DofLayout {
+public:
+  // The space's dofs followed by one extra unknown per entry of extra_vertices (a
+  // multiplier of the slave node at that mesh vertex).
+  DofLayout(MPI_Comm comm, const FieldSpace& space, const MeshPartition& partition,
+            const std::vector<int>& extra_vertices);
+
+  MPI_Comm comm() const { return comm_; }
+  bool identity() const { return size_ == 1; }
+  const MeshPartition& partition() const { return *partition_; }
+  PetscInt n_total() const { return n_total_; }
+  PetscInt n_owned() const { return identity() ? n_total_ : static_cast<PetscInt>(owned_app_.size()); }
+  PetscInt first_owned() const { return first_owned_; }
+  // PETSc's index of an app-ordered unknown, and whether this rank owns it.
+  PetscInt global(PetscInt app) const { return identity() ? app : global_[app]; }
+  bool owns(PetscInt app) const { return identity() || owner_[app] == rank_; }
+
+  // A vector of the whole system's size with this layout's ownership.
+  Vec create_vector() const;
+  // The owned entries of v from app-ordered values (values[k] is unknown k; values may be
+  // shorter than the system: the rest of v is left as it is).
+  void scatter(const std::vector<double>& values, Vec v) const;
+  // Every entry of v on every rank, in app order.
+  void gather(Vec v, std::vector<double>& values) const;
+  // The owned PETSc indices of app unknowns [first, last), ascending.
+  std::vector<PetscInt> owned_indices(PetscInt first, PetscInt last) const;
+
+private:
+  MPI_Comm comm_;
+  int rank_ = 0, size_ = 1;
+  const MeshPartition* partition_;
+  PetscInt n_total_ = 0, first_owned_ = 0;
+  std::vector<int> owner_;         // per app unknown (empty on one rank)
+  std::vector<PetscInt> global_;   // per app unknown (empty on one rank)
+  std::vector<PetscInt> owned_app_;  // app index of each owned unknown, in PETSc order (several ranks)
+  mutable PetscOwner<VecScatter, VecScatterDestroy> to_all_;
+  mutable PetscVec whole_;
+};
+
+}  // namespace stiction::fem

@@ -1,0 +1,35 @@
+#pragma once
+// Which MPI rank assembles each cell. The mesh itself stays whole on every rank (the
+// surfaces the contact search reads are small next to the volume, and the state vectors
+// are replicated); what is divided is the work and the Newton system's rows: each rank
+// assembles its own cells, and owns the dofs of the nodes its cells reach first
+// (nonlinear::DofLayout).
+//
+// The cells are split by PETSc's MatPartitioning over the dual graph (cells sharing a
+// facet), with PT-Scotch, the graph partitioner Debian's PETSc carries (it has no ParMETIS,
+// which MatMeshToCellGraph would need to build the dual graph: it is built here). One rank
+// owns every cell and calls no partitioner.
+#include <vector>
+
+#include <mpi.h>
+
+#include "mesh/mesh.hpp"
+
+namespace stiction::fem {
+
+struct MeshPartition {
+  int rank = 0, size = 1;
+  std::vector<int> cell_owner;   // rank of every cell (the same on every rank)
+  std::vector<int> owned_cells;  // this rank's cells, ascending
+  bool whole() const { return size == 1; }
+};
+
+MeshPartition partition_cells(MPI_Comm comm, const mesh::Mesh& mesh);
+
+// The sum over ranks of each rank's v, on every rank (reduced on rank 0 and broadcast, so
+// every rank holds the same bits: the replicated Newton state must not drift apart).
+void sum_over_ranks(MPI_Comm comm, std::vector<double>& v);
+// The smallest of each rank's cell index c >= 0, or -1 when no rank has one.
+int first_cell_over_ranks(MPI_Comm comm, int c);
+
+}  // namespace stiction::fem
