@@ -10,6 +10,11 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <thread>
+#include <utility>
+
+#include <fmt/ranges.h>
+#include <unistd.h>
 
 #include "bench_report.hpp"
 #include "builtin_scenes.hpp"
@@ -29,21 +34,35 @@ namespace fs = std::filesystem;
 namespace {
 
 const char* kRunColumns =
-    "scene,level,solver,status,converged,reason,unknowns,unknowns_u_l,unknowns_u_q,unknowns_p,multipliers,vertices,"
+    "scene,level,solver,processes,status,converged,reason,unknowns,unknowns_u_l,unknowns_u_q,unknowns_p,multipliers,vertices,"
     "cells,load_steps,"
     "load_steps_completed,newton_iterations,linear_solves,krylov_iterations,krylov_per_linear_solve,wall_seconds,"
-    "assembly_seconds,setup_seconds,solve_seconds,seconds_per_linear_solve,peak_rss_mb,mumps_memory_mb,"
+    "assembly_seconds,setup_seconds,solve_seconds,seconds_per_linear_solve,peak_rss_mb,peak_rss_mb_per_process,mumps_memory_mb,"
     "amg_operator_complexity,krylov_rtol,mumps_ordering,detail";
 const char* kStepColumns =
-    "scene,level,solver,step,newton_iteration,converged,reason,krylov_iterations,initial_residual,final_residual,"
+    "scene,level,solver,processes,step,newton_iteration,converged,reason,krylov_iterations,initial_residual,final_residual,"
     "assembly_seconds,setup_seconds,solve_seconds";
 
 struct Run {
   std::string scene, solver;
   int level;
-  std::string key() const { return fmt::format("{}|{}|{}", scene, level, solver); }
-  std::string id() const { return fmt::format("{}-L{}-{}", fs::path(scene).stem().string(), level, solver); }
+  int processes = 1;
+  std::string key() const { return fmt::format("{}|{}|{}|{}", scene, level, solver, processes); }
+  std::string id() const {
+    return fmt::format("{}-L{}-{}{}", fs::path(scene).stem().string(), level, solver,
+                       processes > 1 ? fmt::format("-np{}", processes) : "");
+  }
 };
+
+// `mpirun -n N` for a run on N > 1 processes (as root Open MPI needs --allow-run-as-root;
+// more processes than cores need --oversubscribe, and their times are not a measurement).
+std::vector<std::string> launcher_for(int processes) {
+  if (processes <= 1) return {};
+  std::vector<std::string> l{"mpirun", "-n", std::to_string(processes)};
+  if (geteuid() == 0) l.push_back("--allow-run-as-root");
+  if (processes > static_cast<int>(std::thread::hardware_concurrency())) l.push_back("--oversubscribe");
+  return l;
+}
 
 int count_data_lines(const std::string& path) {
   std::ifstream in(path);
@@ -96,8 +115,8 @@ void write_rows(const std::string& out, const Run& run, const ChildResult& child
       krylov_rtol = s["ksp_rtol"].value<double>().value_or(krylov_rtol);
       for (const char* key : {"mumps_ordering", "ll_mumps_ordering"})
         if (const auto code = s[key].value<double>()) ordering = mumps_ordering_name(static_cast<int>(*code));
-      steps += fmt::format("{},{},{},{},{},{},{},{},{:.6e},{:.6e},{:.4f},{:.4f},{:.4f}\n", run.scene, run.level,
-                           run.solver, s["step"].value<int64_t>().value_or(0),
+      steps += fmt::format("{},{},{},{},{},{},{},{},{},{:.6e},{:.6e},{:.4f},{:.4f},{:.4f}\n", run.scene, run.level,
+                           run.solver, run.processes, s["step"].value<int64_t>().value_or(0),
                            s["newton_iteration"].value<int64_t>().value_or(0),
                            s["converged"].value<bool>().value_or(false) ? 1 : 0,
                            s["reason"].value<std::string>().value_or(""),
@@ -108,19 +127,24 @@ void write_rows(const std::string& out, const Run& run, const ChildResult& child
     }
   }
   const double solves = num("linear_solves");
+  // On several processes the job's peak is the sum over its processes (metrics.toml, each
+  // process's own VmHWM); on one, the child's.
+  const bool several = run.processes > 1;
+  const double peak_total = several && have_metrics ? num("peak_rss_mb_sum") : child.peak_rss_mb;
+  const double peak_per_process = several && have_metrics ? num("peak_rss_mb") : child.peak_rss_mb;
   std::string detail = m["detail"].value<std::string>().value_or("");
   if (status != "ok" && status != "newton-failed") detail = last_line(run_dir + "/stderr.txt");
   if (child.hit_time_limit) detail = fmt::format("stopped after {:.0f} s", child.wall_seconds);
   const std::string row = fmt::format(
-      "{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.2f},{:.3f},"
+      "{},{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.2f},{:.3f},"
       "{:.3f},{:.3f},{:.3f},{:.4f},"
-      "{:.1f},{:.0f},{:.3f},{},{},{}",
-      run.scene, run.level, run.solver, status, m["converged"].value<bool>().value_or(false) ? 1 : 0,
+      "{:.1f},{:.1f},{:.0f},{:.3f},{},{},{}",
+      run.scene, run.level, run.solver, run.processes, status, m["converged"].value<bool>().value_or(false) ? 1 : 0,
       csv_field(m["reason"].value<std::string>().value_or(status)), num("unknowns"), num("unknowns_u_l"),
       num("unknowns_u_q"), num("unknowns_p"), num("multipliers"), num("vertices"), num("cells"), num("load_steps"), num("load_steps_completed"), num("newton_iterations"), solves,
       num("krylov_iterations"), solves > 0 ? num("krylov_iterations") / solves : 0.0, child.wall_seconds,
       num("assembly_seconds"), num("setup_seconds"), num("solve_seconds"),
-      seconds_per_converged_solve(metrics["linear_solve"].as_array()), child.peak_rss_mb, mumps,
+      seconds_per_converged_solve(metrics["linear_solve"].as_array()), peak_total, peak_per_process, mumps,
       n_complexity ? complexity / n_complexity : 0.0, krylov_rtol > 0 ? fmt::format("{:g}", krylov_rtol) : "",
       ordering, csv_field(detail));
   if (!steps.empty()) append_durably(out + "/steps.csv", steps);
@@ -128,39 +152,45 @@ void write_rows(const std::string& out, const Run& run, const ChildResult& child
 }
 
 // Estimated wall time of a run that has not finished, from the finished ones (seconds; 0:
-// no basis yet). The same scene and backend one level down, times the growth that backend
-// showed between those two levels on another scene, or 15 (about n^1.3 for 8x the
-// unknowns) when none did; without a run one level down, the mean of the finished runs
-// at this level.
-double estimate_seconds(const Run& run, const std::map<std::string, double>& finished) {
+// no basis yet). The same scene, backend and process count one level down, times the
+// growth that backend showed between those two levels on another scene, or 15 (about
+// n^1.3 for 8x the unknowns) when none did; without a run one level down, the mean of the
+// finished runs at this level.
+// Wall time of every finished run, by Run::key().
+struct FinishedRuns {
+  std::map<std::string, std::pair<Run, double>> by_key;
+  void add(const Run& r, double seconds) { by_key[r.key()] = {r, seconds}; }
+  bool has(const Run& r) const { return by_key.count(r.key()) > 0; }
+};
+
+double estimate_seconds(const Run& run, const FinishedRuns& finished) {
   auto seconds = [&](const std::string& scene, const std::string& solver, int level) {
-    const auto it = finished.find(Run{scene, solver, level}.key());
-    return it == finished.end() ? 0.0 : it->second;
+    const auto it = finished.by_key.find(Run{scene, solver, level, run.processes}.key());
+    return it == finished.by_key.end() ? 0.0 : it->second.second;
   };
   if (const double below = seconds(run.scene, run.solver, run.level - 1); below > 0) {
     double growth = 15;
-    for (const auto& [key, t] : finished) {
-      const auto bar = key.find('|'), bar2 = key.rfind('|');
-      const std::string scene = key.substr(0, bar), solver = key.substr(bar2 + 1);
-      if (solver != run.solver || scene == run.scene || std::stoi(key.substr(bar + 1, bar2 - bar - 1)) != run.level)
+    for (const auto& [key, done] : finished.by_key) {
+      const auto& [other, t] = done;
+      if (other.solver != run.solver || other.scene == run.scene || other.level != run.level ||
+          other.processes != run.processes)
         continue;
-      if (const double t0 = seconds(scene, solver, run.level - 1); t0 > 0) growth = t / t0;
+      if (const double t0 = seconds(other.scene, other.solver, run.level - 1); t0 > 0) growth = t / t0;
     }
     return below * growth;
   }
   double sum = 0;
   int n = 0;
-  for (const auto& [key, t] : finished)
-    if (std::stoi(key.substr(key.find('|') + 1)) == run.level) sum += t, ++n;
+  for (const auto& [key, done] : finished.by_key)
+    if (done.first.level == run.level) sum += done.second, ++n;
   return n ? sum / n : 0;
 }
 
-std::string time_left(const std::vector<Run>& runs, size_t current, double elapsed,
-                      const std::map<std::string, double>& finished) {
+std::string time_left(const std::vector<Run>& runs, size_t current, double elapsed, const FinishedRuns& finished) {
   double left = 0;
   int unknown = 0;
   for (size_t k = current; k < runs.size(); ++k) {
-    if (finished.count(runs[k].key())) continue;
+    if (finished.has(runs[k])) continue;
     const double t = estimate_seconds(runs[k], finished);
     if (t <= 0) ++unknown;
     left += k == current ? std::max(t - elapsed, 0.0) : t;
@@ -187,6 +217,14 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
     if (!known.count(s)) throw Error(fmt::format("unknown solver backend '{}' (valid: {})", s, solvers::backend_names()));
   for (int l : o.levels)
     if (l < 0 || l > 4) throw Error(fmt::format("mesh level {} outside 0..4", l));
+  for (int n : o.ranks)
+    if (n < 1 || n > 1024) throw Error(fmt::format("{} MPI processes per run: outside 1..1024", n));
+  for (int n : o.ranks)
+    for (const auto& s : solvers_list)
+      for (const auto& b : solvers::backends())
+        if (n > 1 && b.name == s && !b.distributed)
+          throw Error(fmt::format("solver backend '{}' runs on one MPI process: leave it out of a sweep with --ranks {}",
+                                  s, n));
   // PETSc options go to the children whose prefix they carry; one that matches no backend
   // of the sweep would be silently ignored, so it is an error.
   for (size_t k = 0; k < o.petsc_options.size(); ++k) {
@@ -202,7 +240,7 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
   if (ec) throw Error(fmt::format("cannot create '{}': {}", out, ec.message()));
   const std::string runs_csv = out + "/runs.csv";
   std::set<std::string> done;
-  std::map<std::string, double> finished_seconds;  // run key -> wall time (for the time-left estimate)
+  FinishedRuns finished_runs;  // for the time-left estimate
   const ChildLimits limits = sweep_limits(o.time_limit_seconds, o.memory_limit_mb);
   std::string header;  // of a new sweep (steps.csv gets it too)
   const CsvTable previous = open_sweep_table(runs_csv, kRunColumns, o.resume, info, [&] {
@@ -211,6 +249,8 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
     for (const auto& s : solvers_list)
       header += fmt::format("# backend {} options: {}\n", s, solvers::compact_options(s));
     for (const auto& opt : o.petsc_options) header += "# petsc option: " + opt + "\n";
+    header += fmt::format("# MPI processes per run: {} (this machine: {} cores)\n", fmt::join(o.ranks, ", "),
+                          std::thread::hardware_concurrency());
     header += "# newton forcing: " + (o.forcing.empty() ? std::string("as each scene sets it") : o.forcing) + "\n";
     header += "# krylov rtol: " +
               (o.krylov_rtol < 0 ? std::string("as each scene sets it (newton.krylov_rtol, else the backend's)")
@@ -219,24 +259,29 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
     return header;
   });
   for (const auto& row : previous.rows) {
-    const std::string key = fmt::format("{}|{}|{}", row.at("scene"), row.at("level"), row.at("solver"));
+    const std::string processes = row.at("processes").empty() ? "1" : row.at("processes");  // an older sweep's rows
+    const std::string key = fmt::format("{}|{}|{}|{}", row.at("scene"), row.at("level"), row.at("solver"), processes);
     done.insert(key);
-    if (row.at("status") == "ok") finished_seconds[key] = std::strtod(row.at("wall_seconds").c_str(), nullptr);
+    if (row.at("status") == "ok")
+      finished_runs.add({row.at("scene"), row.at("solver"), std::stoi(row.at("level")), std::stoi(processes)},
+                        std::strtod(row.at("wall_seconds").c_str(), nullptr));
   }
   if (!header.empty()) append_durably(out + "/steps.csv", header + kStepColumns);
 
   std::vector<Run> runs;
   for (int level : o.levels)
     for (const auto& scene : scenes)
-      for (const auto& solver : solvers_list) runs.push_back({scene, solver, level});
+      for (const auto& solver : solvers_list)
+        for (int processes : o.ranks) runs.push_back({scene, solver, level, processes});
   const std::string exe = self_executable();
   int index = 0;
   for (const Run& run : runs) {
     const size_t position = index;
     ++index;
+    const std::string on = run.processes > 1 ? fmt::format(" np{}", run.processes) : "";
     if (done.count(run.key())) {
-      fmt::print(stderr, "bench [{}/{}] {} {} L{}: already in runs.csv, skipped\n", index, runs.size(), run.scene,
-                 run.solver, run.level);
+      fmt::print(stderr, "bench [{}/{}] {} {} L{}{}: already in runs.csv, skipped\n", index, runs.size(), run.scene,
+                 run.solver, run.level, on);
       continue;
     }
     const std::string run_dir = (fs::path(out) / "runs" / run.id()).string();
@@ -255,19 +300,21 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
       }
     int last_step = -1;
     double last_print = -1e9;
-    const ChildResult child = run_child(argv, run_dir + "/stdout.txt", run_dir + "/stderr.txt", limits, [&](double t) {
+    const auto on_tick = [&](double t) {
       const int step = count_data_lines(run_dir + "/steps.csv");
       if (step != last_step || t - last_print > 30) {
-        fmt::print(stderr, "bench [{}/{}] {} {} L{}: {} load steps done, {:.0f} s; {}\n", index, runs.size(),
-                   run.scene, run.solver, run.level, step, t, time_left(runs, position, t, finished_seconds));
+        fmt::print(stderr, "bench [{}/{}] {} {} L{}{}: {} load steps done, {:.0f} s; {}\n", index, runs.size(),
+                   run.scene, run.solver, run.level, on, step, t, time_left(runs, position, t, finished_runs));
         last_step = step;
         last_print = t;
       }
-    });
+    };
+    const ChildResult child = run_child(argv, run_dir + "/stdout.txt", run_dir + "/stderr.txt", limits, on_tick,
+                                        launcher_for(run.processes));
     write_rows(out, run, child, run_dir);
-    if (solve_status(child, fs::exists(run_dir + "/metrics.toml")) == "ok") finished_seconds[run.key()] = child.wall_seconds;
-    fmt::print(stderr, "bench [{}/{}] {} {} L{}: {} in {:.1f} s, peak {:.0f} MB\n", index, runs.size(), run.scene,
-               run.solver, run.level, solve_status(child, fs::exists(run_dir + "/metrics.toml")), child.wall_seconds,
+    if (solve_status(child, fs::exists(run_dir + "/metrics.toml")) == "ok") finished_runs.add(run, child.wall_seconds);
+    fmt::print(stderr, "bench [{}/{}] {} {} L{}{}: {} in {:.1f} s, peak {:.0f} MB\n", index, runs.size(), run.scene,
+               run.solver, run.level, on, solve_status(child, fs::exists(run_dir + "/metrics.toml")), child.wall_seconds,
                child.peak_rss_mb);
     write_bench_report(out);
   }

@@ -15,6 +15,7 @@ struct BenchOptions {
   std::vector<std::string> scenes;   // empty: every built-in scene
   std::vector<std::string> solvers;  // empty: every registered backend
   std::vector<int> levels{0};
+  std::vector<int> ranks{1};         // MPI processes per run (above 1: under mpirun)
   std::string out_dir = "reports/bench";
   bool resume = false;
   bool quick = false;                // each scene's short version (its load.quick_until)

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <tuple>
 
 #include "common/error.hpp"
 #include "csv_table.hpp"
@@ -32,10 +33,62 @@ std::string ratio(double reference, double value) {
   return fmt::format("{:.2f}", reference / value);
 }
 
+// MPI processes of a run (1 for an older sweep's rows, which have no such column).
+int processes_of(const Row& r) { return std::max(1, static_cast<int>(number(r, "processes"))); }
+
+// Strong scaling: each (scene, level, backend) run on several process counts, against its
+// one-process run. Assembly per Newton iteration, time per linear solve, and the peak
+// memory per process and in all.
+std::string strong_scaling_section(const CsvTable& runs) {
+  std::map<std::tuple<std::string, int, std::string>, std::map<int, const Row*>> groups;
+  bool several = false;
+  for (const auto& r : runs.rows) {
+    groups[{r.at("scene"), static_cast<int>(number(r, "level")), r.at("solver")}][processes_of(r)] = &r;
+    several |= processes_of(r) > 1;
+  }
+  if (!several) return {};
+  std::string md =
+      "\n## Strong scaling\n\nThe same run on more MPI processes (`--ranks`), against one process: speed-up = "
+      "one-process time / this time. Assembly s / Newton = assembly seconds per Newton iteration; peak MB / process "
+      "= the largest process's peak resident memory, total MB = the sum over processes.\n\n"
+      "| scene | level | solver | processes | status | total s | s / linear solve | speed-up / solve | assembly s / "
+      "Newton | speed-up / assembly | Krylov / solve | peak MB / process | total MB |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& [key, by_processes] : groups) {
+    if (by_processes.size() < 2 && by_processes.begin()->first == 1) continue;
+    const Row* one = by_processes.count(1) && finished(*by_processes.at(1)) ? by_processes.at(1) : nullptr;
+    auto assembly = [](const Row& r) {
+      const double newton = number(r, "newton_iterations");
+      return newton > 0 ? number(r, "assembly_seconds") / newton : 0.0;
+    };
+    for (const auto& [processes, row] : by_processes) {
+      const Row& r = *row;
+      const bool ok = finished(r);
+      const double per_process = number(r, "peak_rss_mb_per_process") > 0 ? number(r, "peak_rss_mb_per_process")
+                                                                          : number(r, "peak_rss_mb");
+      md += fmt::format(
+          "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", std::get<0>(key), std::get<1>(key),
+          std::get<2>(key), processes, r.at("status"), cell(r, "wall_seconds", "{:.1f}"),
+          ok ? fmt::format("{:.3f}", number(r, "seconds_per_linear_solve")) : "—",
+          ok && one ? ratio(number(*one, "seconds_per_linear_solve"), number(r, "seconds_per_linear_solve")) : "—",
+          ok ? fmt::format("{:.3f}", assembly(r)) : "—", ok && one ? ratio(assembly(*one), assembly(r)) : "—",
+          cell(r, "krylov_per_linear_solve", "{:.1f}"), ok ? fmt::format("{:.0f}", per_process) : "—",
+          ok ? fmt::format("{:.0f}", number(r, "peak_rss_mb")) : "—");
+    }
+  }
+  return md;
+}
+
 }  // namespace
 
 void write_bench_report(const std::string& out_dir) {
-  const CsvTable runs = read_csv(out_dir + "/runs.csv");
+  const CsvTable all_runs = read_csv(out_dir + "/runs.csv");
+  // The tables, ratios and plots below compare backends on one process; runs on several
+  // are compared with their one-process run in the strong-scaling section.
+  CsvTable runs = all_runs;
+  runs.rows.clear();
+  for (const auto& r : all_runs.rows)
+    if (processes_of(r) == 1) runs.rows.push_back(r);
   std::string md = "# stiction benchmark report\n\n## How it was made\n\n";
   for (const auto& c : runs.comments) md += "- " + c + "\n";
   md += "\nRaw data: `runs.csv` (one row per run), `steps.csv` (one row per linear solve), `runs/<run>/` (the "
@@ -76,6 +129,8 @@ void write_bench_report(const std::string& out_dir) {
     }
     md += scaling_section(runs, scene, out_dir);
   }
+
+  md += strong_scaling_section(all_runs);
 
   // Growth of Krylov iterations per Newton step with the mesh level (iterative backends).
   std::string growth;

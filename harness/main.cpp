@@ -144,6 +144,10 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--scenes", bench.scenes, "scenes (comma separated; default: every built-in)")->delimiter(',');
   bench_cmd->add_option("--solvers", bench.solvers, "backends (comma separated; default: every backend)")->delimiter(',');
   bench_cmd->add_option("--levels", bench.levels, "mesh levels (comma separated; default 0)")->delimiter(',');
+  bench_cmd->add_option("--ranks", bench.ranks,
+                        "MPI processes per run, comma separated (default 1; above 1 each run is `mpirun -n N stiction "
+                        "solve ...`, and the report adds a strong-scaling table)")
+      ->delimiter(',');
   bench_cmd->add_option("--out", bench.out_dir, "output directory (runs.csv, steps.csv, report.md, runs/)");
   bench_cmd->add_flag("--resume", bench.resume, "continue a sweep: skip the runs already in runs.csv");
   bench_cmd->add_flag("--quick", bench.quick, "every scene's short version (stiction solve --quick)");

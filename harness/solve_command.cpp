@@ -94,8 +94,10 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   if (restart)
     header += fmt::format("# restarted from '{}' after load step {} (t = {:g})\n", o.restart_dir, resume.state.step,
                           resume.state.time);
+  nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, scene->problem, scene->newton, *solver);
   if (processes > 1)
-    header += fmt::format("# MPI processes: {} (cells split by {}, the state replicated)\n", processes, "PT-Scotch");
+    header += fmt::format("# MPI processes: {} (cells split by {}; mesh and Newton state whole on each)\n", processes,
+                          newton.partition().partitioner);
   const bool verbose = !o.quiet && writer;
   if (verbose) fmt::print(stderr, "{}", header);
 
@@ -111,7 +113,6 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   }
   std::unique_ptr<PvdCollection> pvd;
   if (writer) pvd = std::make_unique<PvdCollection>(out_dir + "/solution.pvd");
-  nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, scene->problem, scene->newton, *solver);
   if (restart) {
     newton.restore(resume.state);
     newton.set_linear_tally(resume.tally);

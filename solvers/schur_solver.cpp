@@ -1,5 +1,7 @@
 #include "schur_solver.hpp"
 
+#include <fmt/format.h>
+
 #include "common/error.hpp"
 #include "solver_figures.hpp"
 #include "stdout_capture.hpp"
@@ -7,13 +9,26 @@
 namespace stiction::solvers {
 
 SchurSolver::SchurSolver(const std::string& name, MPI_Comm comm)
-    : KspSolver(name, comm), hp_(comm, options_prefix(name)) {}
+    : KspSolver(name, comm), hp_(comm, options_prefix(name)) {
+  MPI_Comm_size(comm, &processes_);
+  // PETSc's SOR on a distributed matrix sweeps each process's rows only (MatSOR_MPIAIJ has
+  // no global sweep): the qq_ sweep becomes the process-local symmetric one, which
+  // PCSetFromOptions applies after -qq_pc_sor_symmetric.
+  if (processes_ > 1)
+    STICTION_PETSC(PetscOptionsSetValue(nullptr, ("-" + options_prefix(name) + "qq_pc_sor_local_symmetric").c_str(),
+                                        nullptr));
+}
 
 void SchurSolver::configure(const nonlinear::NewtonSystem& system) {
   const auto* linear = system.field("u_l");
   const auto* quadratic = system.field("u_q");
   if (!linear || !quadratic)
     throw Error(name() + " needs a P2 displacement field split into u_l and u_q (scene basis p2-hierarchical)");
+  if (processes_ > 1 && (system.field("p") || system.field("lambda")))
+    throw Error(fmt::format("{} runs on several MPI processes for systems without a pressure or contact block (its "
+                            "pressure and contact levels read parts assembled on one process); this system has a {} "
+                            "block: run it on one process, or use lu-mumps",
+                            name(), system.field("p") ? "pressure" : "contact"));
   PC pc;
   STICTION_PETSC(KSPGetPC(ksp(), &pc));
   hp_.setup(system.matrix, linear->is, quadratic->is, system.near_null_space, linear->block_size);

@@ -29,6 +29,7 @@ protected:
 
 private:
   HierarchicalPreconditioner hp_;
+  int processes_ = 1;
   std::unique_ptr<MixedPreconditioner> mhp_;
   std::unique_ptr<ContactPreconditioner> contact_;
 };

@@ -75,6 +75,9 @@ MeshPartition partition_cells(MPI_Comm comm, const mesh::Mesh& mesh) {
   STICTION_PETSC(MatPartitioningSetFromOptions(part));  // -mat_partitioning_type overrides
   PetscIS destination, everywhere;
   const PetscErrorCode ierr = MatPartitioningApply(part, destination.out());
+  MatPartitioningType type = nullptr;
+  if (!ierr) MatPartitioningGetType(part, &type);
+  p.partitioner = type ? type : "";
   MatPartitioningDestroy(&part);
   STICTION_PETSC(ierr);
   STICTION_PETSC(ISAllGather(destination, everywhere.out()));

@@ -9,6 +9,7 @@
 // facet), with PT-Scotch, the graph partitioner Debian's PETSc carries (it has no ParMETIS,
 // which MatMeshToCellGraph would need to build the dual graph: it is built here). One rank
 // owns every cell and calls no partitioner.
+#include <string>
 #include <vector>
 
 #include <mpi.h>
@@ -21,6 +22,7 @@ struct MeshPartition {
   int rank = 0, size = 1;
   std::vector<int> cell_owner;   // rank of every cell (the same on every rank)
   std::vector<int> owned_cells;  // this rank's cells, ascending
+  std::string partitioner;       // PETSc's MatPartitioningType that split the cells (empty on one rank)
   bool whole() const { return size == 1; }
 };
 

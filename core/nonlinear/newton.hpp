@@ -152,6 +152,7 @@ public:
   // The last assembled Newton system (for record/replay and tests), in layout()'s numbering.
   const NewtonSystem& system() const { return builder_.system(); }
   const fem::DofLayout& layout() const { return layout_; }
+  const fem::MeshPartition& partition() const { return partition_; }
   // Called after every linear solve with the system, the increment found and its figures
   // (record/replay hooks in here).
   using SystemObserver =
