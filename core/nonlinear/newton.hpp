@@ -5,6 +5,12 @@
 // (constraint_set.hpp), the system each iteration hands to the backend (system_builder.hpp)
 // and the gate on contact-state updates (active_set_monitor.hpp); this file is the loop.
 //
+// On several MPI processes (comm) each holds the whole mesh and the whole Newton state
+// (u, lambda, contact states) and takes every decision alike; what is divided is the work
+// of the cells (fem::MeshPartition: each process assembles its own, the residual is summed
+// over processes) and the Newton system, which the backend solves distributed
+// (fem::DofLayout's numbering); the increment is gathered back to every process.
+//
 // Convergence: ||r_free|| <= max(atol, rtol * r_ref), where r_ref is the larger of the
 // step's initial free residual and the right side of its first (lifted) system, i.e. the
 // size of the load increment. Every stop without convergence carries a named reason. A
