@@ -6,6 +6,7 @@
 #include <cstdlib>
 
 #include "common/error.hpp"
+#include "field_sets.hpp"
 #include "solver_figures.hpp"
 
 namespace stiction::solvers {
@@ -153,11 +154,9 @@ void ContactPreconditioner::setup(Mat M, IS multipliers, Mat schur_mass, Mat sch
                                   const ShellPreconditioner& inner) {
   if (!schur_mass) throw Error("contact preconditioner: the system has no multiplier mass", ErrorKind::Internal);
   inner_ = &inner;
-  PetscInt first;
-  STICTION_PETSC(ISGetMinMax(multipliers, &first, nullptr));
   STICTION_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(multipliers)));
   *is_l_.out() = multipliers;
-  STICTION_PETSC(ISCreateStride(PetscObjectComm(reinterpret_cast<PetscObject>(M)), first, 0, 1, is_a_.out()));
+  is_a_ = complement_in(M, multipliers);
   // The contact blocks change pattern with the active set: extracted afresh every time.
   STICTION_PETSC(MatCreateSubMatrix(M, is_a_, is_l_, MAT_INITIAL_MATRIX, B1_.out()));
   STICTION_PETSC(MatCreateSubMatrix(M, is_l_, is_a_, MAT_INITIAL_MATRIX, B2_.out()));

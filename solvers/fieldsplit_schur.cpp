@@ -11,6 +11,7 @@
 // with that reason (gamg is PETSc's answer there).
 #include <petscksp.h>
 
+#include "field_sets.hpp"
 #include "ksp_solver.hpp"
 #include "solver_figures.hpp"
 
@@ -42,14 +43,14 @@ protected:
     IS existing = nullptr;
     STICTION_PETSC(PCFieldSplitGetIS(pc, "u", &existing));
     if (existing) return;
-    PetscIS u, c;
-    STICTION_PETSC(ISCreateStride(system.comm, n_u, 0, 1, u.out()));
-    STICTION_PETSC(ISSetBlockSize(u, system.field("u_l")->block_size));
-    STICTION_PETSC(ISCreateStride(system.comm, n - n_u, n_u, 1, c.out()));
-    // PCFIELDSPLIT hands a near-null space composed on a split's IS to that block's matrix.
-    if (system.near_null_space)
+    PetscIS u = union_of_fields(system, {"u_l", "u_q"}), c = complement_in(system.matrix, u);
+    // PCFIELDSPLIT hands a near-null space composed on a split's IS to that block's matrix:
+    // the rigid-body modes on the displacement's unknowns.
+    if (system.near_null_space) {
+      const PetscNullSpace modes = restrict_null_space(system.near_null_space, u);
       STICTION_PETSC(PetscObjectCompose(reinterpret_cast<PetscObject>(u.get()), "nearnullspace",
-                                        reinterpret_cast<PetscObject>(system.near_null_space.get())));
+                                        reinterpret_cast<PetscObject>(modes.get())));
+    }
     STICTION_PETSC(PCFieldSplitSetIS(pc, "u", u));
     STICTION_PETSC(PCFieldSplitSetIS(pc, "c", c));
   }
@@ -74,7 +75,7 @@ protected:
   }
 
 private:
-  // The displacement unknowns come first (u_l, then u_q): their count.
+  // The displacement unknowns (u_l and u_q): their count.
   static PetscInt displacement_size(const nonlinear::NewtonSystem& system) {
     PetscInt size = 0, k = 0;
     for (const char* name : {"u_l", "u_q"})

@@ -14,23 +14,21 @@ MixedPreconditioner::MixedPreconditioner(MPI_Comm comm, const std::string& prefi
   STICTION_PETSC(KSPSetOptionsPrefix(ksp_pp_, (prefix + "pp_").c_str()));
 }
 
-void MixedPreconditioner::setup(Mat A, IS pressure, Mat pressure_mass, double alpha) {
+void MixedPreconditioner::setup(Mat A, IS displacement, IS pressure, Mat pressure_mass, double alpha) {
   if (!pressure_mass || !(alpha < 0))
     throw Error("MHP (11) needs the pressure mass matrix and alpha < 0 from a mixed law", ErrorKind::Internal);
-  PetscInt n, first;
-  STICTION_PETSC(MatGetSize(A, &n, nullptr));
-  STICTION_PETSC(ISGetMinMax(pressure, &first, nullptr));
   if (!is_u_) {
     STICTION_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(pressure)));
     *is_p_.out() = pressure;
-    STICTION_PETSC(ISCreateStride(PetscObjectComm(reinterpret_cast<PetscObject>(A)), first, 0, 1, is_u_.out()));
+    STICTION_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(displacement)));
+    *is_u_.out() = displacement;
   }
   const bool first_setup = !S_;
   // The couplings are only multiplied: views of A where A is sequential AIJ, else copies.
   PetscBool seq;
   STICTION_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(A), MATSEQAIJ, &seq));
-  const IndexRange u{0, first}, p = contiguous_range(pressure);
-  if (seq && p.size >= 0 && !block_copies_requested(prefix_)) {
+  const IndexRange u = contiguous_range(displacement), p = contiguous_range(pressure);
+  if (seq && u.size >= 0 && p.size >= 0 && !block_copies_requested(prefix_)) {
     *A_up_.out() = block_view(A, u, p);
     *A_pu_.out() = block_view(A, p, u);
   } else {

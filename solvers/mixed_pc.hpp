@@ -8,7 +8,8 @@
 //   Form Upper, (11):  y_p = S~^-1 r_p,  x_u = HP (r_u - Bp^T y_p),  x_p = y_p
 //   Form Full, (8):    y_u = HP r_u,  x_p = S~^-1 (r_p - Bp y_u),  x_u = HP (r_u - Bp^T x_p)
 // With exact inner solves (HP exact, S~ = S_p) Full is the exact inverse (tests/backends).
-// Layout: the displacement unknowns [u_l | u_q] come first, the pressure block last.
+// The displacement and pressure unknowns are given as index sets (on several processes
+// neither is a contiguous range); other unknowns of A (contact multipliers) are left alone.
 #include <string>
 
 #include "hierarchical_pc.hpp"
@@ -19,8 +20,9 @@ class MixedPreconditioner final : public ShellPreconditioner {
 public:
   MixedPreconditioner(MPI_Comm comm, const std::string& prefix, const HierarchicalPreconditioner& hp);
 
-  // A: the whole mixed matrix; HP must already be set up on it. S~ = alpha M_p.
-  void setup(Mat A, IS pressure, Mat pressure_mass, double alpha);
+  // A: the whole mixed matrix; HP must already be set up on it. S~ = alpha M_p, M_p in the
+  // pressure block's numbering (rows in the order of `pressure`, process by process).
+  void setup(Mat A, IS displacement, IS pressure, Mat pressure_mass, double alpha);
   void apply(Vec r, Vec x) const override;
 
   void set_form(SchurForm form) { form_ = form; }  // Upper (default) or Full

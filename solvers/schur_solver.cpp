@@ -1,8 +1,7 @@
 #include "schur_solver.hpp"
 
-#include <fmt/format.h>
-
 #include "common/error.hpp"
+#include "field_sets.hpp"
 #include "solver_figures.hpp"
 #include "stdout_capture.hpp"
 
@@ -12,11 +11,15 @@ SchurSolver::SchurSolver(const std::string& name, MPI_Comm comm)
     : KspSolver(name, comm), hp_(comm, options_prefix(name)) {
   MPI_Comm_size(comm, &processes_);
   // PETSc's SOR on a distributed matrix sweeps each process's rows only (MatSOR_MPIAIJ has
-  // no global sweep): the qq_ sweep becomes the process-local symmetric one, which
-  // PCSetFromOptions applies after -qq_pc_sor_symmetric.
-  if (processes_ > 1)
-    STICTION_PETSC(PetscOptionsSetValue(nullptr, ("-" + options_prefix(name) + "qq_pc_sor_local_symmetric").c_str(),
-                                        nullptr));
+  // no global sweep): the qq_ and pp_ sweeps become the process-local symmetric ones, which
+  // PCSetFromOptions applies after -qq_pc_sor_symmetric. PETSc's own LU is sequential: the
+  // contact level's S~ is factored by MUMPS instead.
+  if (processes_ > 1) {
+    const std::string prefix = "-" + options_prefix(name);
+    for (const char* key : {"qq_pc_sor_local_symmetric", "pp_pc_sor_local_symmetric"})
+      STICTION_PETSC(PetscOptionsSetValue(nullptr, (prefix + key).c_str(), nullptr));
+    STICTION_PETSC(PetscOptionsSetValue(nullptr, (prefix + "ss_pc_factor_mat_solver_type").c_str(), "mumps"));
+  }
 }
 
 void SchurSolver::configure(const nonlinear::NewtonSystem& system) {
@@ -24,11 +27,6 @@ void SchurSolver::configure(const nonlinear::NewtonSystem& system) {
   const auto* quadratic = system.field("u_q");
   if (!linear || !quadratic)
     throw Error(name() + " needs a P2 displacement field split into u_l and u_q (scene basis p2-hierarchical)");
-  if (processes_ > 1 && (system.field("p") || system.field("lambda")))
-    throw Error(fmt::format("{} runs on several MPI processes for systems without a pressure or contact block (its "
-                            "pressure and contact levels read parts assembled on one process); this system has a {} "
-                            "block: run it on one process, or use lu-mumps",
-                            name(), system.field("p") ? "pressure" : "contact"));
   PC pc;
   STICTION_PETSC(KSPGetPC(ksp(), &pc));
   hp_.setup(system.matrix, linear->is, quadratic->is, system.near_null_space, linear->block_size);
@@ -37,7 +35,8 @@ void SchurSolver::configure(const nonlinear::NewtonSystem& system) {
   std::string name = "HP (10): A_ll^-1 then S~^-1 on u_q; the ll_ and qq_ solvers are listed below";
   if (pressure) {
     if (!mhp_) mhp_ = std::make_unique<MixedPreconditioner>(system.comm, options_prefix(this->name()), hp_);
-    mhp_->setup(system.matrix, pressure->is, system.pressure_mass, system.pressure_schur_scale);
+    if (!displacement_) displacement_ = union_of_fields(system, {"u_l", "u_q"});
+    mhp_->setup(system.matrix, displacement_, pressure->is, system.pressure_mass, system.pressure_schur_scale);
     inner = mhp_.get();
     name = "MHP (11): alpha M_p on p (pp_ solver), then HP (10) on u (ll_ and qq_ solvers)";
   }

@@ -30,6 +30,7 @@ protected:
 private:
   HierarchicalPreconditioner hp_;
   int processes_ = 1;
+  PetscIS displacement_;  // u_l and u_q together, for MHP
   std::unique_ptr<MixedPreconditioner> mhp_;
   std::unique_ptr<ContactPreconditioner> contact_;
 };

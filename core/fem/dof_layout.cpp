@@ -81,4 +81,16 @@ std::vector<PetscInt> DofLayout::owned_indices(PetscInt first, PetscInt last) co
   return out;
 }
 
+std::vector<PetscInt> DofLayout::block_numbering(PetscInt first, PetscInt last) const {
+  std::vector<PetscInt> order(static_cast<size_t>(last - first));
+  std::iota(order.begin(), order.end(), 0);
+  if (identity()) return order;
+  // PETSc numbers rank by rank: in ascending PETSc index the block's unknowns come process
+  // by process, each process's in the order of owned_indices.
+  std::sort(order.begin(), order.end(), [&](PetscInt a, PetscInt b) { return global(first + a) < global(first + b); });
+  std::vector<PetscInt> number(order.size());
+  for (size_t i = 0; i < order.size(); ++i) number[static_cast<size_t>(order[i])] = static_cast<PetscInt>(i);
+  return number;
+}
+
 }  // namespace stiction::fem

@@ -44,6 +44,10 @@ public:
   void gather(Vec v, std::vector<double>& values) const;
   // The owned PETSc indices of app unknowns [first, last), ascending.
   std::vector<PetscInt> owned_indices(PetscInt first, PetscInt last) const;
+  // The numbering of the block of app unknowns [first, last) that PETSc gives it as a field
+  // (MatCreateSubMatrix, VecGetSubVector over owned_indices): process by process, in PETSc's
+  // order within each. Entry k is unknown first + k's index in it; on one rank, k.
+  std::vector<PetscInt> block_numbering(PetscInt first, PetscInt last) const;
 
 private:
   MPI_Comm comm_;

@@ -312,23 +312,30 @@ void subtract_traction(const FieldSpace& space, int facet_tag, const VectorField
   subtract_load(space, space.dim() - 1, nodes, verts, t, residual);
 }
 
-Mat assemble_pressure_mass(MPI_Comm comm, const FieldSpace& space) {
+Mat assemble_pressure_mass(const DofLayout& layout, const FieldSpace& space) {
   const int d = space.dim(), n = space.n_pressure_dofs(), first = space.pressure_block().first;
+  const std::vector<PetscInt> row = layout.block_numbering(first, first + n);
+  const PetscInt n_owned = static_cast<PetscInt>(layout.owned_indices(first, first + n).size());
   Mat M;
-  STICTION_PETSC(MatCreateAIJ(comm, n, n, n, n, 32, nullptr, 0, nullptr, &M));
-  // Exact P1 element mass matrix: |K| (1 + delta_ab) / ((d + 1)(d + 2)).
-  for (int c = 0; c < space.mesh().n_cells(); ++c) {
+  STICTION_PETSC(MatCreateAIJ(layout.comm(), n_owned, n_owned, n, n, 32, nullptr, 32, nullptr, &M));
+  const auto assemble_cell = [&](int c) {
     const int* v = space.mesh().cell(c);
-    if (space.pressure_dof(v[0]) < 0) continue;
+    if (space.pressure_dof(v[0]) < 0) return;
     // The chord cell's volume: the matrix is a preconditioner's Schur approximation.
     const double vol = std::abs(mesh::signed_measure(space.mesh(), c));
     PetscInt idx[4];
     double Me[16];
+    // Exact P1 element mass matrix: |K| (1 + delta_ab) / ((d + 1)(d + 2)).
     for (int a = 0; a <= d; ++a) {
-      idx[a] = space.pressure_dof(v[a]) - first;
+      idx[a] = row[static_cast<size_t>(space.pressure_dof(v[a]) - first)];
       for (int b = 0; b <= d; ++b) Me[a * (d + 1) + b] = vol * (a == b ? 2.0 : 1.0) / ((d + 1) * (d + 2));
     }
     STICTION_PETSC(MatSetValues(M, d + 1, idx, d + 1, idx, Me, ADD_VALUES));
+  };
+  if (layout.identity()) {
+    for (int c = 0; c < space.mesh().n_cells(); ++c) assemble_cell(c);
+  } else {
+    for (int c : layout.partition().owned_cells) assemble_cell(c);
   }
   STICTION_PETSC(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
   STICTION_PETSC(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));

@@ -7,6 +7,7 @@
 #include <array>
 #include <vector>
 
+#include "fem/dof_layout.hpp"
 #include "fem/field_space.hpp"
 #include "fem/stiffness_matrix.hpp"
 #include "materials/material.hpp"
@@ -37,9 +38,10 @@ void subtract_body_force(const FieldSpace& space, const VectorField& f, std::vec
 void subtract_traction(const FieldSpace& space, int facet_tag, const VectorField& t,
                        std::vector<double>& residual);
 
-// P1 mass matrix of the pressure field, M_p[i][j] = int q_i q_j over mixed cells, numbered
-// within the pressure block (row i = pressure dof - first pressure dof).
-Mat assemble_pressure_mass(MPI_Comm comm, const FieldSpace& space);
+// P1 mass matrix of the pressure field, M_p[i][j] = int q_i q_j over mixed cells, in the
+// pressure block's numbering (DofLayout::block_numbering; on one rank, row i = pressure
+// dof - first pressure dof). Each rank adds its own cells; the rows go to their owners.
+Mat assemble_pressure_mass(const DofLayout& layout, const FieldSpace& space);
 
 // Cauchy stress (3x3, row-major) at each cell's centroid, for output.
 std::vector<double> cell_cauchy_stress(const FieldSpace& space,

@@ -190,4 +190,38 @@ Mat build_sparse_matrix(MPI_Comm comm, PetscInt m, const SparseEntries& entries)
                        std::make_shared<std::vector<PetscScalar>>(std::move(e.values))});
 }
 
+Mat build_block_matrix(const fem::DofLayout& layout, PetscInt first, PetscInt m, const SparseEntries& entries) {
+  if (layout.identity()) return build_sparse_matrix(layout.comm(), m, entries);
+  const std::vector<PetscInt> number = layout.block_numbering(first, first + m);
+  // This rank's rows of the block are consecutive in its numbering: [row_first, row_first + n_owned).
+  PetscInt n_owned = 0, row_first = m;
+  for (PetscInt k = 0; k < m; ++k)
+    if (layout.owns(first + k)) ++n_owned, row_first = std::min(row_first, number[static_cast<size_t>(k)]);
+  // Preallocation counts duplicates (an upper bound), capped by the row's room.
+  std::vector<PetscInt> d_nnz(static_cast<size_t>(n_owned), 1), o_nnz(static_cast<size_t>(n_owned), 0);
+  for (size_t e = 0; e < entries.size(); ++e) {
+    if (!layout.owns(first + entries.rows[e])) continue;
+    const PetscInt r = number[static_cast<size_t>(entries.rows[e])] - row_first;
+    const PetscInt c = number[static_cast<size_t>(entries.cols[e])];
+    ++(c >= row_first && c < row_first + n_owned ? d_nnz : o_nnz)[static_cast<size_t>(r)];
+  }
+  for (PetscInt r = 0; r < n_owned; ++r) {
+    d_nnz[static_cast<size_t>(r)] = std::min(d_nnz[static_cast<size_t>(r)], n_owned);
+    o_nnz[static_cast<size_t>(r)] = std::min(o_nnz[static_cast<size_t>(r)], m - n_owned);
+  }
+  Mat M;
+  STICTION_PETSC(MatCreateAIJ(layout.comm(), n_owned, n_owned, m, m, 0, d_nnz.data(), 0, o_nnz.data(), &M));
+  const PetscScalar zero = 0;
+  for (PetscInt r = row_first; r < row_first + n_owned; ++r)
+    STICTION_PETSC(MatSetValues(M, 1, &r, 1, &r, &zero, ADD_VALUES));
+  for (size_t e = 0; e < entries.size(); ++e) {
+    if (!layout.owns(first + entries.rows[e])) continue;
+    const PetscInt r = number[static_cast<size_t>(entries.rows[e])], c = number[static_cast<size_t>(entries.cols[e])];
+    STICTION_PETSC(MatSetValues(M, 1, &r, 1, &c, &entries.values[e], ADD_VALUES));
+  }
+  STICTION_PETSC(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
+  STICTION_PETSC(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
+  return M;
+}
+
 }  // namespace stiction::nonlinear

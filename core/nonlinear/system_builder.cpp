@@ -81,8 +81,8 @@ NewtonSystemBuilder::NewtonSystemBuilder(const fem::DofLayout& layout, const Ela
   if (fem::is_quadratic(space.kind())) add_field("u_q", space.quadratic_block(), space.dim());
   if (space.has_pressure()) add_field("p", space.pressure_block(), 1);
   if (n_multipliers > 0) add_field("lambda", {space.n_dofs(), static_cast<int>(n_total)}, space.dim());
-  if (space.has_pressure() && layout.identity()) {
-    *system_.pressure_mass.out() = fem::assemble_pressure_mass(comm, space);
+  if (space.has_pressure()) {
+    *system_.pressure_mass.out() = fem::assemble_pressure_mass(layout, space);
     // alpha of MHP (11) from the (first) mixed law; the paper's scenes have one rubber body.
     for (const auto* m : problem.cell_material)
       if (m->mixed_bulk_modulus() > 0) {
@@ -131,19 +131,17 @@ void NewtonSystemBuilder::border_with_constraints(double t, const std::vector<do
   SparseEntries blocks, mass, surface_stiffness, slip_coupling;
   std::vector<double> scratch_u(n_u), scratch_c;
   constraints.evaluate(t, u, lambda, scratch_u, scratch_c, &blocks, n_u);
-  if (stiffness_->distributed()) {
+  if (stiffness_->distributed())
     *system_.matrix.out() =
         build_distributed_augmented_matrix(stiffness_->mat(), layout_, n_u, blocks, stiffness_->block_size());
-    STICTION_PETSC(MatSetNearNullSpace(system_.matrix, system_.near_null_space));
-    return;
-  }
-  constraints.schur_parts(mass, surface_stiffness, slip_coupling);
-  *system_.matrix.out() = build_augmented_matrix(system_.comm, stiffness_->take_arrays(), m, blocks,
-                                                 stiffness_->block_size());
+  else
+    *system_.matrix.out() = build_augmented_matrix(system_.comm, stiffness_->take_arrays(), m, blocks,
+                                                   stiffness_->block_size());
   STICTION_PETSC(MatSetNearNullSpace(system_.matrix, system_.near_null_space));
-  *system_.multiplier_schur_mass.out() = build_sparse_matrix(system_.comm, m, mass);
-  *system_.multiplier_schur_stiffness.out() = build_sparse_matrix(system_.comm, m, surface_stiffness);
-  *system_.multiplier_schur_slip.out() = build_sparse_matrix(system_.comm, m, slip_coupling);
+  constraints.schur_parts(mass, surface_stiffness, slip_coupling);
+  *system_.multiplier_schur_mass.out() = build_block_matrix(layout_, n_u, m, mass);
+  *system_.multiplier_schur_stiffness.out() = build_block_matrix(layout_, n_u, m, surface_stiffness);
+  *system_.multiplier_schur_slip.out() = build_block_matrix(layout_, n_u, m, slip_coupling);
 }
 
 }  // namespace stiction::nonlinear

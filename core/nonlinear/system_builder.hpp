@@ -7,8 +7,8 @@
 //
 // The system lives in the DofLayout's numbering: on one rank that is stiction's own, on
 // several the matrix and vectors are distributed, each rank assembles its own cells and
-// the rows of the contact blocks it owns. The preconditioner parts that the hand-built
-// Schur backends read (pressure mass, multiplier Schur parts) exist on one rank only.
+// the rows of the contact blocks it owns. The preconditioner parts (pressure mass,
+// multiplier Schur parts) are distributed likewise, in their field's block numbering.
 //
 // Without contact the tangent keeps one matrix over its pattern for the whole run; with
 // contact each system is a new matrix (the constraint blocks change pattern with the
