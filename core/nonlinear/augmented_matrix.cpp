@@ -147,32 +147,57 @@ void visit_owned_entries(Mat tangent, const fem::DofLayout& layout, PetscInt n_u
     }
 }
 
+// Upper bounds of each owned row's entries in the result's diagonal and off-diagonal
+// blocks: the tangent's stored entries (the row lengths of its two sequential parts), the
+// multiplier diagonals and every owned entry of extra (duplicates counted, so a bound),
+// capped by the row's room: read off the counts, where PETSc's MATPREALLOCATOR would insert
+// every entry into a hash set first.
+void count_owned_entries(Mat tangent, const fem::DofLayout& layout, PetscInt n_u, const SparseEntries& extra,
+                         std::vector<PetscInt>& d_nnz, std::vector<PetscInt>& o_nnz) {
+  const PetscInt first = layout.first_owned(), n_owned = layout.n_owned(), n_total = layout.n_total();
+  d_nnz.assign(static_cast<size_t>(n_owned), 0);
+  o_nnz.assign(static_cast<size_t>(n_owned), 0);
+  Mat parts[2];
+  const PetscInt* column_map;
+  STICTION_PETSC(MatMPIAIJGetSeqAIJ(tangent, &parts[0], &parts[1], &column_map));
+  for (int k = 0; k < 2; ++k) {
+    PetscInt n;
+    const PetscInt *ia, *ja;
+    PetscBool done;
+    STICTION_PETSC(MatGetRowIJ(parts[k], 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
+    if (!done || n != n_owned)
+      throw Error("augmented matrix: the tangent's rows are not readable", ErrorKind::Internal);
+    std::vector<PetscInt>& count = k == 0 ? d_nnz : o_nnz;
+    for (PetscInt r = 0; r < n; ++r) count[static_cast<size_t>(r)] += ia[r + 1] - ia[r];
+    STICTION_PETSC(MatRestoreRowIJ(parts[k], 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
+  }
+  for (PetscInt a = n_u; a < n_total; ++a)
+    if (layout.owns(a)) ++d_nnz[static_cast<size_t>(layout.global(a) - first)];
+  for (size_t k = 0; k < extra.size(); ++k)
+    if (layout.owns(extra.rows[k])) {
+      const PetscInt r = layout.global(extra.rows[k]) - first, c = layout.global(extra.cols[k]);
+      ++(c >= first && c < first + n_owned ? d_nnz : o_nnz)[static_cast<size_t>(r)];
+    }
+  for (PetscInt r = 0; r < n_owned; ++r) {
+    d_nnz[static_cast<size_t>(r)] = std::min(d_nnz[static_cast<size_t>(r)], n_owned);
+    o_nnz[static_cast<size_t>(r)] = std::min(o_nnz[static_cast<size_t>(r)], n_total - n_owned);
+  }
+}
+
 }  // namespace
 
 Mat build_distributed_augmented_matrix(Mat tangent, const fem::DofLayout& layout, PetscInt n_u,
                                        const SparseEntries& extra, PetscInt block_size) {
-  const MPI_Comm comm = layout.comm();
   const PetscInt n_owned = layout.n_owned(), n_total = layout.n_total();
-  std::vector<PetscScalar> zeros;
-  PetscMat pattern;
-  STICTION_PETSC(MatCreate(comm, pattern.out()));
-  STICTION_PETSC(MatSetSizes(pattern, n_owned, n_owned, n_total, n_total));
-  STICTION_PETSC(MatSetType(pattern, MATPREALLOCATOR));
-  STICTION_PETSC(MatSetUp(pattern));
-  visit_owned_entries(tangent, layout, n_u, extra,
-                      [&](PetscInt r, PetscInt n, const PetscInt* cols, const PetscScalar*) {
-                        if (zeros.size() < static_cast<size_t>(n)) zeros.resize(n, 0.0);
-                        STICTION_PETSC(MatSetValues(pattern, 1, &r, n, cols, zeros.data(), INSERT_VALUES));
-                      });
-  STICTION_PETSC(MatAssemblyBegin(pattern, MAT_FINAL_ASSEMBLY));
-  STICTION_PETSC(MatAssemblyEnd(pattern, MAT_FINAL_ASSEMBLY));
+  std::vector<PetscInt> d_nnz, o_nnz;
+  count_owned_entries(tangent, layout, n_u, extra, d_nnz, o_nnz);
   Mat A;
-  STICTION_PETSC(MatCreate(comm, &A));
+  STICTION_PETSC(MatCreate(layout.comm(), &A));
   STICTION_PETSC(MatSetSizes(A, n_owned, n_owned, n_total, n_total));
   STICTION_PETSC(MatSetType(A, MATMPIAIJ));
   if (block_size > 1 && n_owned % block_size == 0 && n_total % block_size == 0)
     STICTION_PETSC(MatSetBlockSize(A, block_size));
-  STICTION_PETSC(MatPreallocatorPreallocate(pattern, PETSC_TRUE, A));
+  STICTION_PETSC(MatMPIAIJSetPreallocation(A, 0, d_nnz.data(), 0, o_nnz.data()));
   visit_owned_entries(tangent, layout, n_u, extra,
                       [&](PetscInt r, PetscInt n, const PetscInt* cols, const PetscScalar* values) {
                         STICTION_PETSC(MatSetValues(A, 1, &r, n, cols, values, ADD_VALUES));

@@ -1,0 +1,12 @@
+#!/bin/bash
+# Strong scaling, one process against two, on a free machine; one sweep directory per command.
+cd /work/main
+export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
+B=${STICTION_BIN:?}
+run() { echo "== $(date -u +%H:%M:%S) $*" >> /work/l2/scaling.log; $B bench "$@" >> /work/l2/scaling.log 2>&1; }
+run --scenes block-strips --solvers schur-amg --levels 1 --ranks 1,2 --time-limit 2400 --out reports/scaling/block-strips-L1
+run --scenes block-compression --solvers schur-amg,lu-mumps --levels 1 --ranks 1,2 --time-limit 1800 --out reports/scaling/block-compression-L1
+run --scenes mooney-rivlin-block --solvers schur-amg --levels 1 --ranks 1,2 --time-limit 1800 --out reports/scaling/mooney-rivlin-block-L1
+run --scenes block-compression --solvers schur-amg --levels 2 --ranks 1,2 --time-limit 2400 --out reports/scaling/block-compression-L2
+run --scenes mooney-rivlin-block --solvers schur-amg,lu-mumps --levels 1 --ranks 1,2 --time-limit 1800 --resume --out reports/scaling/mooney-rivlin-block-L1
+echo "== $(date -u +%H:%M:%S) done" >> /work/l2/scaling.log
