@@ -10,12 +10,21 @@ DofLayout::DofLayout(MPI_Comm comm, const FieldSpace& space, const MeshPartition
     : comm_(comm), rank_(partition.rank), size_(partition.size), partition_(&partition) {
   const int d = space.dim(), nn = space.n_nodes(), n_space = space.n_dofs();
   n_total_ = n_space + static_cast<PetscInt>(extra_vertices.size());
-  if (identity()) return;
+  const int nc = space.mesh().n_cells();
+  if (identity()) {
+    row_cells_.resize(nc);
+    std::iota(row_cells_.begin(), row_cells_.end(), 0);
+    return;
+  }
   std::vector<int> node_owner(nn, -1), nodes(space.nodes_per_cell());
-  for (int c = 0; c < space.mesh().n_cells(); ++c) {
+  for (int c = 0; c < nc; ++c) {
     space.cell_nodes(c, nodes.data());
     for (int n : nodes)
       if (node_owner[n] < 0) node_owner[n] = partition.cell_owner[c];
+  }
+  for (int c = 0; c < nc; ++c) {
+    space.cell_nodes(c, nodes.data());
+    if (std::any_of(nodes.begin(), nodes.end(), [&](int n) { return node_owner[n] == rank_; })) row_cells_.push_back(c);
   }
   owner_.assign(n_total_, 0);
   for (int n = 0; n < nn; ++n)

@@ -8,8 +8,8 @@
 //
 // Ownership: a node belongs to the rank of the first cell (lowest index) that holds it,
 // its pressure and its multipliers follow it (the multiplier rows stay on the rank that
-// owns the slave node).
-#include <memory>
+// owns the slave node). The cells whose element matrices reach a rank's rows (row_cells)
+// are its own cells and the layer around them that holds one of its nodes.
 #include <vector>
 
 #include "common/petsc.hpp"
@@ -28,6 +28,9 @@ public:
   MPI_Comm comm() const { return comm_; }
   bool identity() const { return size_ == 1; }
   const MeshPartition& partition() const { return *partition_; }
+  // The cells holding at least one node this rank owns, ascending (every cell on one rank):
+  // the tangent's owned rows are complete from these cells' element matrices alone.
+  const std::vector<int>& row_cells() const { return row_cells_; }
   PetscInt n_total() const { return n_total_; }
   PetscInt n_owned() const { return identity() ? n_total_ : static_cast<PetscInt>(owned_app_.size()); }
   PetscInt first_owned() const { return first_owned_; }
@@ -57,6 +60,7 @@ private:
   std::vector<int> owner_;         // per app unknown (empty on one rank)
   std::vector<PetscInt> global_;   // per app unknown (empty on one rank)
   std::vector<PetscInt> owned_app_;  // app index of each owned unknown, in PETSc order (several ranks)
+  std::vector<int> row_cells_;
   mutable PetscOwner<VecScatter, VecScatterDestroy> to_all_;
   mutable PetscVec whole_;
 };

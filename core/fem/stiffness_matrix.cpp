@@ -1,6 +1,7 @@
 #include "fem/stiffness_matrix.hpp"
 
 #include <algorithm>
+#include <numeric>
 
 #include "common/csr_matrix.hpp"
 #include "common/error.hpp"
@@ -105,33 +106,107 @@ void StiffnessMatrix::build_columns() {
 void StiffnessMatrix::create_distributed_matrix() {
   const DofLayout& L = *layout_;
   const PetscInt first = L.first_owned(), n_owned = L.n_owned(), n_total = L.n_total();
-  const int nn = space_->n_nodes(), nv = space_->n_vertices();
-  std::vector<PetscInt> d_nnz(n_owned, 0), o_nnz(n_owned, 0), cols;
-  for (int a = 0; a < nn; ++a) {
-    if (!L.owns(static_cast<PetscInt>(a) * dim_)) continue;
+  const int nn = space_->n_nodes(), nv = space_->n_vertices(), d = dim_;
+  // The rows of owned node a: its components, then its pressure.
+  auto node_rows = [&](int a, PetscInt* rows) {
+    int n = 0;
+    for (int i = 0; i < d; ++i) rows[n++] = L.global(static_cast<PetscInt>(a) * d + i);
+    if (a < nv && space_->pressure_dof(a) >= 0) rows[n++] = L.global(space_->pressure_dof(a));
+    return n;
+  };
+  // Owned node a's columns in PETSc's numbering, ascending, and for each of row_columns'
+  // entries its place there (the entry of sorted[place]).
+  std::vector<PetscInt> cols, sorted;
+  std::vector<int> place;
+  auto sorted_columns = [&](int a) {
     row_columns(a, cols);
-    PetscInt on_rank = 0;
-    for (PetscInt c : cols) {
-      const PetscInt g = L.global(c);
-      on_rank += g >= first && g < first + n_owned;
+    std::vector<int> order(cols.size());
+    std::iota(order.begin(), order.end(), 0);
+    for (PetscInt& c : cols) c = L.global(c);
+    std::sort(order.begin(), order.end(), [&](int x, int y) { return cols[x] < cols[y]; });
+    sorted.resize(cols.size());
+    place.resize(cols.size());
+    for (size_t k = 0; k < order.size(); ++k) sorted[k] = cols[order[k]], place[order[k]] = static_cast<int>(k);
+  };
+
+  // Each owned node's slots, and its rows' lengths in the two parts; the node graph is kept
+  // for the owned nodes only.
+  std::vector<PetscInt> d_nnz(n_owned, 0), o_nnz(n_owned, 0), rows(4);
+  std::vector<int> offsets(nn + 1, 0), neighbours;
+  column_slot_.clear();
+  pressure_slot_.clear();
+  for (int a = 0; a < nn; ++a) {
+    offsets[a + 1] = offsets[a];
+    if (!L.owns(static_cast<PetscInt>(a) * d)) continue;
+    sorted_columns(a);
+    const PetscInt n_diagonal = std::count_if(sorted.begin(), sorted.end(), [&](PetscInt g) { return g >= first && g < first + n_owned; });
+    // The offset in its part of sorted entry k: diagonal entries first in the row's
+    // sorted order, off-diagonal ones after, each part in ascending column.
+    std::vector<int> slot(sorted.size());
+    for (int k = 0, in_diagonal = 0, off = 0; k < static_cast<int>(sorted.size()); ++k)
+      slot[k] = sorted[k] >= first && sorted[k] < first + n_owned ? in_diagonal++ : -1 - off++;
+    const int deg = degree(a);
+    for (int j = 0; j < deg; ++j) {
+      const int s0 = slot[place[static_cast<size_t>(j) * d]];
+      for (int k = 1; k < d; ++k)  // a neighbour's components are consecutive in one part
+        if (slot[place[static_cast<size_t>(j) * d + k]] != (s0 >= 0 ? s0 + k : s0 - k))
+          throw Error("stiffness matrix: a node's components are not consecutive columns", ErrorKind::Internal);
+      neighbours.push_back(neighbours_[offsets_[a] + j]);
+      column_slot_.push_back(s0);
+      pressure_slot_.push_back(mixed_[a] && j < vertex_degree_[a] ? slot[place[static_cast<size_t>(d) * deg + j]] : 0);
     }
-    auto set = [&](PetscInt app_row) {
-      const PetscInt r = L.global(app_row) - first;
-      d_nnz[r] = on_rank;
-      o_nnz[r] = static_cast<PetscInt>(cols.size()) - on_rank;
-    };
-    for (int i = 0; i < dim_; ++i) set(static_cast<PetscInt>(a) * dim_ + i);
-    if (a < nv && space_->pressure_dof(a) >= 0) set(space_->pressure_dof(a));
+    offsets[a + 1] = offsets[a] + deg;
+    for (int r = 0, n = node_rows(a, rows.data()); r < n; ++r) {
+      d_nnz[rows[r] - first] = n_diagonal;
+      o_nnz[rows[r] - first] = static_cast<PetscInt>(sorted.size()) - n_diagonal;
+    }
   }
-  // The row lengths came from the whole node graph: the per-node graph is not kept.
-  std::vector<int>().swap(neighbours_);
-  std::vector<int>().swap(offsets_);
-  std::vector<int>().swap(vertex_degree_);
+
   STICTION_PETSC(MatCreate(comm_, A_.out()));
   STICTION_PETSC(MatSetSizes(A_, n_owned, n_owned, n_total, n_total));
   STICTION_PETSC(MatSetType(A_, MATMPIAIJ));
   if (n_owned % block_size() == 0 && n_total % block_size() == 0) STICTION_PETSC(MatSetBlockSize(A_, block_size()));
   STICTION_PETSC(MatMPIAIJSetPreallocation(A_, 0, d_nnz.data(), 0, o_nnz.data()));
+  // The pattern: every owned row's columns, with zeros.
+  std::vector<PetscScalar> zeros;
+  for (int a = 0; a < nn; ++a) {
+    if (offsets[a + 1] == offsets[a]) continue;
+    sorted_columns(a);
+    const int n = node_rows(a, rows.data());
+    zeros.assign(sorted.size() * n, 0.0);
+    STICTION_PETSC(MatSetValues(A_, n, rows.data(), static_cast<PetscInt>(sorted.size()), sorted.data(), zeros.data(), INSERT_VALUES));
+  }
+  STICTION_PETSC(MatAssemblyBegin(A_, MAT_FINAL_ASSEMBLY));
+  STICTION_PETSC(MatAssemblyEnd(A_, MAT_FINAL_ASSEMBLY));
+  STICTION_PETSC(MatSetOption(A_, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));
+  STICTION_PETSC(MatSetOption(A_, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
+  offsets_ = std::move(offsets);
+  neighbours_ = std::move(neighbours);
+  check_distributed_pattern(d_nnz, o_nnz);
+}
+
+// The slots assume the layout of PETSc's MPIAIJ: per row, the diagonal part's columns
+// ascending, then the off-diagonal part's, ascending in global column (its compressed
+// column map is sorted). Checked once, so that a PETSc that stored them otherwise fails
+// loudly instead of assembling a wrong matrix.
+void StiffnessMatrix::check_distributed_pattern(const std::vector<PetscInt>& d_nnz, const std::vector<PetscInt>& o_nnz) {
+  const PetscInt* column_map;
+  STICTION_PETSC(MatMPIAIJGetSeqAIJ(A_, &parts_[0], &parts_[1], &column_map));
+  for (int k = 0; k < 2; ++k) {
+    PetscInt n;
+    const PetscInt *ia, *ja;
+    PetscBool done;
+    STICTION_PETSC(MatGetRowIJ(parts_[k], 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
+    bool ok = done && n == static_cast<PetscInt>(d_nnz.size());
+    for (PetscInt r = 0; ok && r < n; ++r) {
+      ok = ia[r + 1] - ia[r] == (k == 0 ? d_nnz : o_nnz)[static_cast<size_t>(r)];
+      for (PetscInt e = ia[r] + 1; ok && e < ia[r + 1]; ++e)
+        ok = k == 0 ? ja[e - 1] < ja[e] : column_map[ja[e - 1]] < column_map[ja[e]];
+    }
+    part_entries_[k] = done ? ia[n] : -1;
+    STICTION_PETSC(MatRestoreRowIJ(parts_[k], 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
+    if (!ok) throw Error("stiffness matrix: PETSc's MPIAIJ parts are not laid out as assumed", ErrorKind::Internal);
+  }
 }
 
 void StiffnessMatrix::create_matrix() {
@@ -171,7 +246,16 @@ void StiffnessMatrix::row_columns(int a, std::vector<PetscInt>& cols) const {
 
 void StiffnessMatrix::begin_assembly() {
   if (distributed()) {
-    STICTION_PETSC(MatZeroEntries(A_));
+    STICTION_PETSC(MatZeroEntries(A_));  // also marks the MPIAIJ changed for its solvers
+    for (int k = 0; k < 2; ++k) {
+      PetscInt n;
+      const PetscInt* ja;
+      PetscBool done;
+      STICTION_PETSC(MatGetRowIJ(parts_[k], 0, PETSC_FALSE, PETSC_FALSE, &n, &part_row_start_[k], &ja, &done));
+      if (!done || part_row_start_[k][n] != part_entries_[k])
+        throw Error("stiffness matrix: the distributed matrix's pattern changed since it was laid out", ErrorKind::Internal);
+      STICTION_PETSC(MatSeqAIJGetArray(parts_[k], &part_values_[k]));
+    }
     return;
   }
   if (!A_)
@@ -206,19 +290,49 @@ void StiffnessMatrix::add(const int* nodes, int n_nodes, int n_pressure_nodes, c
 }
 
 void StiffnessMatrix::add_distributed(const int* nodes, int n_nodes, int n_pressure_nodes, const double* Ke) {
-  PetscInt idx[64];
+  const DofLayout& L = *layout_;
+  const PetscInt first = L.first_owned();
   const int d = dim_, m = n_nodes * d + n_pressure_nodes;
-  for (int a = 0; a < n_nodes; ++a)
-    for (int i = 0; i < d; ++i) idx[a * d + i] = layout_->global(static_cast<PetscInt>(nodes[a]) * d + i);
-  for (int a = 0; a < n_pressure_nodes; ++a) idx[n_nodes * d + a] = layout_->global(space_->pressure_dof(nodes[a]));
-  STICTION_PETSC(MatSetValues(A_, m, idx, m, idx, Ke, ADD_VALUES));
+  for (int a = 0; a < n_nodes; ++a) {
+    const int na = nodes[a];
+    if (!L.owns(static_cast<PetscInt>(na) * d)) continue;  // its rows are another rank's
+    const int deg = degree(na);
+    const int* nb_begin = &neighbours_[offsets_[na]];
+    int n_rows = 0, element_row[4];
+    PetscInt row[4];
+    for (int i = 0; i < d; ++i) element_row[n_rows] = a * d + i, row[n_rows++] = L.global(static_cast<PetscInt>(na) * d + i) - first;
+    if (a < n_pressure_nodes) element_row[n_rows] = n_nodes * d + a, row[n_rows++] = L.global(space_->pressure_dof(na)) - first;
+    // The entry of row r at slot s: in the diagonal part (s >= 0) or the off-diagonal one.
+    auto entry = [&](PetscInt r, int s) {
+      return s >= 0 ? part_values_[0] + part_row_start_[0][r] + s : part_values_[1] + part_row_start_[1][r] + (-1 - s);
+    };
+    for (int b = 0; b < n_nodes; ++b) {
+      const int pos = offsets_[na] + static_cast<int>(std::lower_bound(nb_begin, nb_begin + deg, nodes[b]) - nb_begin);
+      const int s = column_slot_[pos];
+      for (int r = 0; r < n_rows; ++r) {
+        const double* src = Ke + static_cast<size_t>(element_row[r]) * m;
+        // A neighbour's components are consecutive entries of one part from its slot on.
+        PetscScalar* dst = entry(row[r], s);
+        for (int k = 0; k < d; ++k) dst[k] += src[b * d + k];
+        if (b < n_pressure_nodes) *entry(row[r], pressure_slot_[pos]) += src[n_nodes * d + b];
+      }
+    }
+  }
 }
 
 void StiffnessMatrix::end_assembly() {
   if (!distributed()) STICTION_PETSC(MatSeqAIJRestoreArray(A_, &values_));
+  for (int k = 0; distributed() && k < 2; ++k) {
+    PetscInt n;
+    const PetscInt* ja = nullptr;
+    PetscBool done;
+    STICTION_PETSC(MatSeqAIJRestoreArray(parts_[k], &part_values_[k]));
+    STICTION_PETSC(MatRestoreRowIJ(parts_[k], 0, PETSC_FALSE, PETSC_FALSE, &n, &part_row_start_[k], &ja, &done));
+  }
   values_ = nullptr;
   STICTION_PETSC(MatAssemblyBegin(A_, MAT_FINAL_ASSEMBLY));
   STICTION_PETSC(MatAssemblyEnd(A_, MAT_FINAL_ASSEMBLY));
+
 }
 
 }  // namespace stiction::fem

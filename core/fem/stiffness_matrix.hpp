@@ -15,10 +15,14 @@
 // node, and is the matrix's own storage (seq_aij_over), so no second copy of it exists.
 //
 // On several MPI ranks (a DofLayout that is not the identity) the matrix is PETSc's MPIAIJ
-// in the layout's numbering, preallocated from the node graph for the owned rows; each
-// rank adds the element matrices of its own cells by MatSetValues, and the rows that
-// belong to another rank travel in PETSc's stash at end_assembly(). Its size is the whole
-// system's (the multiplier rows, owned by the slave nodes' ranks, stay empty here).
+// in the layout's numbering, and each rank writes only its own rows: it computes the
+// element matrices of the cells that reach them (DofLayout::row_cells: its cells and the
+// layer around them that holds one of its nodes) and adds each owned row's entries
+// straight into the value arrays of the MPIAIJ's two sequential parts (diagonal and
+// off-diagonal block), at positions worked out once from the node graph. No entry travels
+// between ranks; the price is the element matrices of that one layer of cells, computed on
+// both sides of a cut. Its size is the whole system's (the multiplier rows, owned by the
+// slave nodes' ranks, stay empty here).
 //
 // take_arrays() hands the assembled matrix over (a contact system merges its blocks into
 // its values, see build_augmented_matrix), so the tangent and the augmented matrix do not
@@ -60,6 +64,7 @@ private:
   void build_columns();
   void create_matrix();
   void create_distributed_matrix();
+  void check_distributed_pattern(const std::vector<PetscInt>& d_nnz, const std::vector<PetscInt>& o_nnz);
   void add_distributed(const int* nodes, int n_nodes, int n_pressure_nodes, const double* Ke);
 
   const FieldSpace* space_;
@@ -74,6 +79,16 @@ private:
   std::shared_ptr<std::vector<PetscScalar>> values_storage_;
   PetscMat A_;
   PetscScalar* values_ = nullptr;  // valid between begin_assembly and end_assembly
+  // Several ranks: where neighbour j of owned node a starts in a's rows (indexed like
+  // neighbours_), as an offset into the row of the diagonal part (>= 0) or -1 - the offset
+  // into the row of the off-diagonal part; the first for its displacement columns, the
+  // second for its pressure column (vertex neighbours of mixed nodes). Between begin and
+  // end of an assembly, each part's row starts and values.
+  std::vector<int> column_slot_, pressure_slot_;
+  PetscInt part_entries_[2] = {0, 0};
+  Mat parts_[2] = {nullptr, nullptr};
+  const PetscInt* part_row_start_[2] = {nullptr, nullptr};
+  PetscScalar* part_values_[2] = {nullptr, nullptr};
 };
 
 }  // namespace stiction::fem

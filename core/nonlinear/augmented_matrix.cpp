@@ -120,67 +120,20 @@ Mat build_augmented_matrix(MPI_Comm comm, CsrArrays tangent, PetscInt m, const S
 
 namespace {
 
-// Calls put(row, n, cols, values) for every owned row of the tangent, every owned diagonal
-// of a multiplier row and every owned entry of extra, in PETSc's numbering.
-template <class Put>
-void visit_owned_entries(Mat tangent, const fem::DofLayout& layout, PetscInt n_u, const SparseEntries& extra,
-                         Put&& put) {
-  const PetscInt first = layout.first_owned(), last = first + layout.n_owned();
-  for (PetscInt r = first; r < last; ++r) {
-    PetscInt n;
-    const PetscInt* cols;
-    const PetscScalar* values;
-    STICTION_PETSC(MatGetRow(tangent, r, &n, &cols, &values));
-    if (n > 0) put(r, n, cols, values);
-    STICTION_PETSC(MatRestoreRow(tangent, r, &n, &cols, &values));
-  }
-  const PetscScalar zero = 0;
-  for (PetscInt a = n_u; a < layout.n_total(); ++a)
-    if (layout.owns(a)) {
-      const PetscInt g = layout.global(a);
-      put(g, 1, &g, &zero);
+// The union of two sorted rows, values summed where both have a column.
+void merge_rows(PetscInt an, const PetscInt* a_cols, const PetscScalar* a_values, PetscInt bn, const PetscInt* b_cols,
+                const PetscScalar* b_values, std::vector<PetscInt>& cols, std::vector<PetscScalar>& values) {
+  cols.clear();
+  values.clear();
+  PetscInt i = 0, j = 0;
+  while (i < an || j < bn) {
+    if (j == bn || (i < an && a_cols[i] < b_cols[j])) {
+      cols.push_back(a_cols[i]), values.push_back(a_values[i]), ++i;
+    } else if (i == an || b_cols[j] < a_cols[i]) {
+      cols.push_back(b_cols[j]), values.push_back(b_values[j]), ++j;
+    } else {
+      cols.push_back(a_cols[i]), values.push_back(a_values[i] + b_values[j]), ++i, ++j;
     }
-  for (size_t k = 0; k < extra.size(); ++k)
-    if (layout.owns(extra.rows[k])) {
-      const PetscInt r = layout.global(extra.rows[k]), c = layout.global(extra.cols[k]);
-      put(r, 1, &c, &extra.values[k]);
-    }
-}
-
-// Upper bounds of each owned row's entries in the result's diagonal and off-diagonal
-// blocks: the tangent's stored entries (the row lengths of its two sequential parts), the
-// multiplier diagonals and every owned entry of extra (duplicates counted, so a bound),
-// capped by the row's room: read off the counts, where PETSc's MATPREALLOCATOR would insert
-// every entry into a hash set first.
-void count_owned_entries(Mat tangent, const fem::DofLayout& layout, PetscInt n_u, const SparseEntries& extra,
-                         std::vector<PetscInt>& d_nnz, std::vector<PetscInt>& o_nnz) {
-  const PetscInt first = layout.first_owned(), n_owned = layout.n_owned(), n_total = layout.n_total();
-  d_nnz.assign(static_cast<size_t>(n_owned), 0);
-  o_nnz.assign(static_cast<size_t>(n_owned), 0);
-  Mat parts[2];
-  const PetscInt* column_map;
-  STICTION_PETSC(MatMPIAIJGetSeqAIJ(tangent, &parts[0], &parts[1], &column_map));
-  for (int k = 0; k < 2; ++k) {
-    PetscInt n;
-    const PetscInt *ia, *ja;
-    PetscBool done;
-    STICTION_PETSC(MatGetRowIJ(parts[k], 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
-    if (!done || n != n_owned)
-      throw Error("augmented matrix: the tangent's rows are not readable", ErrorKind::Internal);
-    std::vector<PetscInt>& count = k == 0 ? d_nnz : o_nnz;
-    for (PetscInt r = 0; r < n; ++r) count[static_cast<size_t>(r)] += ia[r + 1] - ia[r];
-    STICTION_PETSC(MatRestoreRowIJ(parts[k], 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
-  }
-  for (PetscInt a = n_u; a < n_total; ++a)
-    if (layout.owns(a)) ++d_nnz[static_cast<size_t>(layout.global(a) - first)];
-  for (size_t k = 0; k < extra.size(); ++k)
-    if (layout.owns(extra.rows[k])) {
-      const PetscInt r = layout.global(extra.rows[k]) - first, c = layout.global(extra.cols[k]);
-      ++(c >= first && c < first + n_owned ? d_nnz : o_nnz)[static_cast<size_t>(r)];
-    }
-  for (PetscInt r = 0; r < n_owned; ++r) {
-    d_nnz[static_cast<size_t>(r)] = std::min(d_nnz[static_cast<size_t>(r)], n_owned);
-    o_nnz[static_cast<size_t>(r)] = std::min(o_nnz[static_cast<size_t>(r)], n_total - n_owned);
   }
 }
 
@@ -188,9 +141,40 @@ void count_owned_entries(Mat tangent, const fem::DofLayout& layout, PetscInt n_u
 
 Mat build_distributed_augmented_matrix(Mat tangent, const fem::DofLayout& layout, PetscInt n_u,
                                        const SparseEntries& extra, PetscInt block_size) {
-  const PetscInt n_owned = layout.n_owned(), n_total = layout.n_total();
-  std::vector<PetscInt> d_nnz, o_nnz;
-  count_owned_entries(tangent, layout, n_u, extra, d_nnz, o_nnz);
+  const PetscInt first = layout.first_owned(), n_owned = layout.n_owned(), n_total = layout.n_total();
+  // This rank's rows of the constraint blocks, compressed (local rows, PETSc's columns,
+  // duplicates summed in the order added, as on one rank), with the multiplier diagonals.
+  SparseEntries owned;
+  for (PetscInt a = n_u; a < n_total; ++a)
+    if (layout.owns(a)) owned.add(layout.global(a) - first, layout.global(a), 0.0);
+  for (size_t k = 0; k < extra.size(); ++k)
+    if (layout.owns(extra.rows[k]))
+      owned.add(layout.global(extra.rows[k]) - first, layout.global(extra.cols[k]), extra.values[k]);
+  const CompressedRows e = compress(n_owned, owned, n_owned);
+  owned = SparseEntries();
+
+  // Each owned row: the tangent's row merged with the constraint entries. Counted first
+  // (exact preallocation), then inserted whole and in column order: PETSc appends.
+  std::vector<PetscInt> cols;
+  std::vector<PetscScalar> values;
+  auto merged_row = [&](PetscInt r, auto&& use) {
+    PetscInt n;
+    const PetscInt* t_cols;
+    const PetscScalar* t_values;
+    STICTION_PETSC(MatGetRow(tangent, first + r, &n, &t_cols, &t_values));
+    merge_rows(n, t_cols, t_values, e.start[r + 1] - e.start[r], e.cols.data() + e.start[r],
+               e.values.data() + e.start[r], cols, values);
+    STICTION_PETSC(MatRestoreRow(tangent, first + r, &n, &t_cols, &t_values));
+    use(first + r);
+  };
+  std::vector<PetscInt> d_nnz(static_cast<size_t>(n_owned)), o_nnz(static_cast<size_t>(n_owned));
+  for (PetscInt r = 0; r < n_owned; ++r)
+    merged_row(r, [&](PetscInt) {
+      const auto in_diagonal =
+          std::count_if(cols.begin(), cols.end(), [&](PetscInt c) { return c >= first && c < first + n_owned; });
+      d_nnz[static_cast<size_t>(r)] = static_cast<PetscInt>(in_diagonal);
+      o_nnz[static_cast<size_t>(r)] = static_cast<PetscInt>(cols.size() - in_diagonal);
+    });
   Mat A;
   STICTION_PETSC(MatCreate(layout.comm(), &A));
   STICTION_PETSC(MatSetSizes(A, n_owned, n_owned, n_total, n_total));
@@ -198,10 +182,12 @@ Mat build_distributed_augmented_matrix(Mat tangent, const fem::DofLayout& layout
   if (block_size > 1 && n_owned % block_size == 0 && n_total % block_size == 0)
     STICTION_PETSC(MatSetBlockSize(A, block_size));
   STICTION_PETSC(MatMPIAIJSetPreallocation(A, 0, d_nnz.data(), 0, o_nnz.data()));
-  visit_owned_entries(tangent, layout, n_u, extra,
-                      [&](PetscInt r, PetscInt n, const PetscInt* cols, const PetscScalar* values) {
-                        STICTION_PETSC(MatSetValues(A, 1, &r, n, cols, values, ADD_VALUES));
-                      });
+  STICTION_PETSC(MatSetOption(A, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));
+  for (PetscInt r = 0; r < n_owned; ++r)
+    merged_row(r, [&](PetscInt row) {
+      STICTION_PETSC(MatSetValues(A, 1, &row, static_cast<PetscInt>(cols.size()), cols.data(), values.data(),
+                                  INSERT_VALUES));
+    });
   STICTION_PETSC(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
   STICTION_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
   return A;
