@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdlib>
 #include <limits>
 
 #include "common/petsc.hpp"
@@ -74,6 +75,11 @@ MeshPartition partition_cells(MPI_Comm comm, const mesh::Mesh& mesh) {
   STICTION_PETSC(MatPartitioningSetType(part, MATPARTITIONINGPTSCOTCH));
   STICTION_PETSC(MatPartitioningSetFromOptions(part));  // -mat_partitioning_type overrides
   PetscIS destination, everywhere;
+  // Scotch 7 runs its partitioning on as many threads as cores unless told otherwise, and
+  // the threads' race made the partition, and with it every Krylov count of a distributed
+  // run, change from run to run; on one thread it is the same every time (a setting in the
+  // environment wins).
+  setenv("SCOTCH_PTHREAD_NUMBER", "1", 0);
   const PetscErrorCode ierr = MatPartitioningApply(part, destination.out());
   MatPartitioningType type = nullptr;
   if (!ierr) MatPartitioningGetType(part, &type);

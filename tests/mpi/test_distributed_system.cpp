@@ -3,8 +3,8 @@
 // verify) and with the other process (PETSC_COMM_WORLD, the system distributed by
 // fem::DofLayout). At every Newton iteration the distributed matrix times a fixed vector,
 // and the right side, brought back to stiction's own numbering, must equal the
-// one-process ones: the exact Jacobian survives the distribution (cells assembled by
-// their own rank, rows sent to their owner, contact rows on the slave node's rank,
+// one-process ones: the exact Jacobian survives the distribution (each rank's rows
+// assembled from the cells that reach them, contact rows on the slave node's rank,
 // Dirichlet rows zeroed by their owner). The preconditioner parts the Schur backends read
 // (the pressure mass, the multiplier block's Schur parts) are compared the same way, in
 // their field's block numbering.
@@ -19,6 +19,7 @@
 
 #include "builtin_scenes.hpp"
 #include "common/petsc.hpp"
+#include "fem/mesh_partition.hpp"
 #include "nonlinear/newton.hpp"
 #include "registry.hpp"
 
@@ -169,5 +170,20 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DistributedSystem,
                            std::replace(n.begin(), n.end(), '-', '_');
                            return n;
                          });
+
+// PT-Scotch splits the cells the same way every time: on several threads (Scotch 7's
+// default) their race changed the partition, and so every Krylov count of a distributed
+// run, from one call to the next.
+TEST(MeshPartition, IsTheSameEveryTime) {
+  int processes = 1;
+  MPI_Comm_size(PETSC_COMM_WORLD, &processes);
+  ASSERT_EQ(processes, 2) << "run under mpirun -n 2";
+  auto scene = harness::open_scene("block-strips", 0, {});
+  const mesh::Mesh& mesh = scene->problem.space->mesh();
+  const fem::MeshPartition first = fem::partition_cells(PETSC_COMM_WORLD, mesh);
+  ASSERT_EQ(first.partitioner, "ptscotch");
+  for (int k = 2; k <= 5; ++k)
+    EXPECT_EQ(fem::partition_cells(PETSC_COMM_WORLD, mesh).cell_owner, first.cell_owner) << "partition " << k;
+}
 
 }  // namespace
