@@ -103,48 +103,49 @@ void StiffnessMatrix::build_columns() {
   columns_ = std::move(columns);
 }
 
-void StiffnessMatrix::create_distributed_matrix() {
-  const DofLayout& L = *layout_;
-  const PetscInt first = L.first_owned(), n_owned = L.n_owned(), n_total = L.n_total();
-  const int nn = space_->n_nodes(), nv = space_->n_vertices(), d = dim_;
-  // The rows of owned node a: its components, then its pressure.
-  auto node_rows = [&](int a, PetscInt* rows) {
-    int n = 0;
-    for (int i = 0; i < d; ++i) rows[n++] = L.global(static_cast<PetscInt>(a) * d + i);
-    if (a < nv && space_->pressure_dof(a) >= 0) rows[n++] = L.global(space_->pressure_dof(a));
-    return n;
-  };
-  // Owned node a's columns in PETSc's numbering, ascending, and for each of row_columns'
-  // entries its place there (the entry of sorted[place]).
-  std::vector<PetscInt> cols, sorted;
-  std::vector<int> place;
-  auto sorted_columns = [&](int a) {
-    row_columns(a, cols);
-    std::vector<int> order(cols.size());
-    std::iota(order.begin(), order.end(), 0);
-    for (PetscInt& c : cols) c = L.global(c);
-    std::sort(order.begin(), order.end(), [&](int x, int y) { return cols[x] < cols[y]; });
-    sorted.resize(cols.size());
-    place.resize(cols.size());
-    for (size_t k = 0; k < order.size(); ++k) sorted[k] = cols[order[k]], place[order[k]] = static_cast<int>(k);
-  };
+// The rows of owned node a in PETSc's numbering (its components, then its pressure).
+int StiffnessMatrix::node_rows(int a, PetscInt* rows) const {
+  int n = 0;
+  for (int i = 0; i < dim_; ++i) rows[n++] = layout_->global(static_cast<PetscInt>(a) * dim_ + i);
+  if (a < space_->n_vertices() && space_->pressure_dof(a) >= 0) rows[n++] = layout_->global(space_->pressure_dof(a));
+  return n;
+}
 
-  // Each owned node's slots, and its rows' lengths in the two parts; the node graph is kept
-  // for the owned nodes only.
-  std::vector<PetscInt> d_nnz(n_owned, 0), o_nnz(n_owned, 0), rows(4);
-  std::vector<int> offsets(nn + 1, 0), neighbours;
+// Node a's columns in PETSc's numbering, ascending, and for each entry of row_columns its
+// place there (entry k is sorted[place[k]]).
+void StiffnessMatrix::sorted_columns(int a, std::vector<PetscInt>& sorted, std::vector<int>& place) const {
+  std::vector<PetscInt> cols;
+  row_columns(a, cols);
+  for (PetscInt& c : cols) c = layout_->global(c);
+  std::vector<int> order(cols.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int x, int y) { return cols[x] < cols[y]; });
+  sorted.resize(cols.size());
+  place.resize(cols.size());
+  for (size_t k = 0; k < order.size(); ++k) sorted[k] = cols[order[k]], place[order[k]] = static_cast<int>(k);
+}
+
+// The slots of every owned node's neighbours and its rows' lengths in the two parts; the
+// node graph keeps the owned nodes only (the others' rows are assembled elsewhere).
+void StiffnessMatrix::lay_out_owned_rows(std::vector<PetscInt>& d_nnz, std::vector<PetscInt>& o_nnz) {
+  const DofLayout& L = *layout_;
+  const PetscInt first = L.first_owned(), n_owned = L.n_owned();
+  const int nn = space_->n_nodes(), d = dim_;
+  auto on_rank = [&](PetscInt g) { return g >= first && g < first + n_owned; };
+  d_nnz.assign(static_cast<size_t>(n_owned), 0);
+  o_nnz.assign(static_cast<size_t>(n_owned), 0);
+  std::vector<int> offsets(nn + 1, 0), neighbours, place, slot;
+  std::vector<PetscInt> sorted, rows(4);
   column_slot_.clear();
   pressure_slot_.clear();
   for (int a = 0; a < nn; ++a) {
     offsets[a + 1] = offsets[a];
     if (!L.owns(static_cast<PetscInt>(a) * d)) continue;
-    sorted_columns(a);
-    const PetscInt n_diagonal = std::count_if(sorted.begin(), sorted.end(), [&](PetscInt g) { return g >= first && g < first + n_owned; });
-    // The offset in its part of sorted entry k: diagonal entries first in the row's
-    // sorted order, off-diagonal ones after, each part in ascending column.
-    std::vector<int> slot(sorted.size());
-    for (int k = 0, in_diagonal = 0, off = 0; k < static_cast<int>(sorted.size()); ++k)
-      slot[k] = sorted[k] >= first && sorted[k] < first + n_owned ? in_diagonal++ : -1 - off++;
+    sorted_columns(a, sorted, place);
+    // Sorted entry k's offset in its part: PETSc keeps each part's columns ascending.
+    slot.resize(sorted.size());
+    int n_diagonal = 0, n_off = 0;
+    for (size_t k = 0; k < sorted.size(); ++k) slot[k] = on_rank(sorted[k]) ? n_diagonal++ : -1 - n_off++;
     const int deg = degree(a);
     for (int j = 0; j < deg; ++j) {
       const int s0 = slot[place[static_cast<size_t>(j) * d]];
@@ -157,31 +158,40 @@ void StiffnessMatrix::create_distributed_matrix() {
     }
     offsets[a + 1] = offsets[a] + deg;
     for (int r = 0, n = node_rows(a, rows.data()); r < n; ++r) {
-      d_nnz[rows[r] - first] = n_diagonal;
-      o_nnz[rows[r] - first] = static_cast<PetscInt>(sorted.size()) - n_diagonal;
+      d_nnz[static_cast<size_t>(rows[r] - first)] = n_diagonal;
+      o_nnz[static_cast<size_t>(rows[r] - first)] = n_off;
     }
   }
+  offsets_ = std::move(offsets);
+  neighbours_ = std::move(neighbours);
+}
 
+void StiffnessMatrix::create_distributed_matrix() {
+  const DofLayout& L = *layout_;
+  const PetscInt n_owned = L.n_owned(), n_total = L.n_total();
+  std::vector<PetscInt> d_nnz, o_nnz;
+  lay_out_owned_rows(d_nnz, o_nnz);
   STICTION_PETSC(MatCreate(comm_, A_.out()));
   STICTION_PETSC(MatSetSizes(A_, n_owned, n_owned, n_total, n_total));
   STICTION_PETSC(MatSetType(A_, MATMPIAIJ));
   if (n_owned % block_size() == 0 && n_total % block_size() == 0) STICTION_PETSC(MatSetBlockSize(A_, block_size()));
   STICTION_PETSC(MatMPIAIJSetPreallocation(A_, 0, d_nnz.data(), 0, o_nnz.data()));
   // The pattern: every owned row's columns, with zeros.
+  std::vector<PetscInt> sorted, rows(4);
+  std::vector<int> place;
   std::vector<PetscScalar> zeros;
-  for (int a = 0; a < nn; ++a) {
-    if (offsets[a + 1] == offsets[a]) continue;
-    sorted_columns(a);
+  for (int a = 0; a < space_->n_nodes(); ++a) {
+    if (degree(a) == 0) continue;  // not owned
+    sorted_columns(a, sorted, place);
     const int n = node_rows(a, rows.data());
     zeros.assign(sorted.size() * n, 0.0);
-    STICTION_PETSC(MatSetValues(A_, n, rows.data(), static_cast<PetscInt>(sorted.size()), sorted.data(), zeros.data(), INSERT_VALUES));
+    STICTION_PETSC(MatSetValues(A_, n, rows.data(), static_cast<PetscInt>(sorted.size()), sorted.data(), zeros.data(),
+                                INSERT_VALUES));
   }
   STICTION_PETSC(MatAssemblyBegin(A_, MAT_FINAL_ASSEMBLY));
   STICTION_PETSC(MatAssemblyEnd(A_, MAT_FINAL_ASSEMBLY));
   STICTION_PETSC(MatSetOption(A_, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));
   STICTION_PETSC(MatSetOption(A_, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
-  offsets_ = std::move(offsets);
-  neighbours_ = std::move(neighbours);
   check_distributed_pattern(d_nnz, o_nnz);
 }
 
@@ -332,7 +342,6 @@ void StiffnessMatrix::end_assembly() {
   values_ = nullptr;
   STICTION_PETSC(MatAssemblyBegin(A_, MAT_FINAL_ASSEMBLY));
   STICTION_PETSC(MatAssemblyEnd(A_, MAT_FINAL_ASSEMBLY));
-
 }
 
 }  // namespace stiction::fem

@@ -64,6 +64,9 @@ private:
   void build_columns();
   void create_matrix();
   void create_distributed_matrix();
+  void lay_out_owned_rows(std::vector<PetscInt>& d_nnz, std::vector<PetscInt>& o_nnz);
+  int node_rows(int a, PetscInt* rows) const;
+  void sorted_columns(int a, std::vector<PetscInt>& sorted, std::vector<int>& place) const;
   void check_distributed_pattern(const std::vector<PetscInt>& d_nnz, const std::vector<PetscInt>& o_nnz);
   void add_distributed(const int* nodes, int n_nodes, int n_pressure_nodes, const double* Ke);
 
