@@ -2,13 +2,14 @@
 // Which MPI rank assembles each cell. The mesh itself stays whole on every rank (the
 // surfaces the contact search reads are small next to the volume, and the state vectors
 // are replicated); what is divided is the work and the Newton system's rows: each rank
-// assembles its own cells, and owns the dofs of the nodes its cells reach first
-// (nonlinear::DofLayout).
+// owns the dofs of the nodes its cells reach first (fem::DofLayout), sums the residual
+// over its own cells and assembles its rows of the tangent.
 //
 // The cells are split by PETSc's MatPartitioning over the dual graph (cells sharing a
 // facet), with PT-Scotch, the graph partitioner Debian's PETSc carries (it has no ParMETIS,
-// which MatMeshToCellGraph would need to build the dual graph: it is built here). One rank
-// owns every cell and calls no partitioner.
+// which MatMeshToCellGraph would need to build the dual graph: it is built here), on one
+// thread so that the split is the same on every run. One rank owns every cell and calls
+// no partitioner.
 #include <string>
 #include <vector>
 
