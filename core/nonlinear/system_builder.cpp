@@ -113,7 +113,7 @@ void NewtonSystemBuilder::assemble(double t, const std::vector<double>& u, const
   if (!constraints.empty()) system_.matrix.reset();  // the caller released the backend's set-up on it
   stiffness_->begin_assembly();
   fem::assemble_internal(*problem_.space, problem_.cell_material, u, nullptr, stiffness_.get(),
-                         layout_.identity() ? nullptr : &layout_.row_cells());
+                         &layout_.row_cells());
   stiffness_->end_assembly();
   if (!constraints.empty()) border_with_constraints(t, u, lambda, constraints);
   std::vector<double> b(r_u.size() + r_c.size());
