@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "common/error.hpp"
+#include "fem/mesh_partition.hpp"
 
 namespace stiction::contact {
 
@@ -86,7 +87,7 @@ void ContactPair::evaluate(double t, const std::vector<double>& u, const double*
                            double* r_c, nonlinear::SparseEntries* jacobian, PetscInt offset) const {
   if (jacobian) {
     std::vector<NodeKinematics> nodes;
-    compute_kinematics(t, u, lambda, &r_u, jacobian, offset, true, nodes);
+    kinematics_everywhere(t, u, lambda, &r_u, jacobian, offset, true, nodes);
     write_rows(t, nodes, lambda, r_c, jacobian, offset);
     return;
   }
@@ -97,10 +98,65 @@ void ContactPair::evaluate(double t, const std::vector<double>& u, const double*
 void ContactPair::evaluate_kinematics(double t, const std::vector<double>& u, const double* lambda,
                                       std::vector<double>* r_u, PetscInt offset) const {
   last_evaluated_.valid = false;
-  compute_kinematics(t, u, lambda, r_u, nullptr, offset, false, last_evaluated_.nodes);
+  kinematics_everywhere(t, u, lambda, r_u, nullptr, offset, false, last_evaluated_.nodes);
   last_evaluated_.t = t;
   last_evaluated_.u = u;
   last_evaluated_.valid = true;
+}
+
+void ContactPair::distribute(MPI_Comm comm, const std::vector<char>& owned) {
+  comm_ = comm;
+  owned_.clear();
+  if (!owned.empty())
+    for (int i = 0; i < slave_.n_nodes(); ++i) owned_.push_back(owned[static_cast<size_t>(i) * dim_]);
+  last_evaluated_.valid = false;
+}
+
+// Each process integrates what it owns: the per-node sums of its nodes and its share of the
+// forces (compute_kinematics). The forces are summed like the elastic residual
+// (fem::sum_over_ranks: the same bits on every process); a node's values come from its
+// owner alone, so the sum copies them exactly.
+void ContactPair::kinematics_everywhere(double t, const std::vector<double>& u, const double* lambda,
+                                        std::vector<double>* r_u, nonlinear::SparseEntries* jacobian,
+                                        PetscInt offset, bool with_derivatives,
+                                        std::vector<NodeKinematics>& nodes) const {
+  if (!distributed()) {
+    compute_kinematics(t, u, lambda, r_u, jacobian, offset, with_derivatives, nodes);
+    return;
+  }
+  std::vector<double> forces;
+  if (r_u) forces.assign(r_u->size(), 0.0);
+  compute_kinematics(t, u, lambda, r_u ? &forces : nullptr, jacobian, offset, with_derivatives, nodes);
+  if (r_u) {
+    fem::sum_over_ranks(comm_, forces);
+    for (size_t k = 0; k < forces.size(); ++k) (*r_u)[k] += forces[k];
+  }
+  constexpr int kValues = 10;  // n, G, S, admissible
+  std::vector<double> values(nodes.size() * kValues, 0.0);
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    if (!owned_[i]) continue;
+    double* v = &values[i * kValues];
+    for (int c = 0; c < 3; ++c) v[c] = nodes[i].n[c], v[3 + c] = nodes[i].G[c], v[6 + c] = nodes[i].S[c];
+    v[9] = nodes[i].admissible ? 1 : 0;
+  }
+  fem::sum_over_ranks(comm_, values);
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    if (owned_[i]) continue;
+    const double* v = &values[i * kValues];
+    for (int c = 0; c < 3; ++c) nodes[i].n[c] = v[c], nodes[i].G[c] = v[3 + c], nodes[i].S[c] = v[6 + c];
+    nodes[i].admissible = v[9] != 0;
+  }
+}
+
+void ContactPair::local_kinematics(double t, const std::vector<double>& u, std::vector<NodeKinematics>& nodes) const {
+  whole_ = true;
+  try {
+    compute_kinematics(t, u, nullptr, nullptr, nullptr, 0, false, nodes);
+  } catch (...) {
+    whole_ = false;
+    throw;
+  }
+  whole_ = false;
 }
 
 void ContactPair::evaluate_rows(double t, const std::vector<double>& u, const double* lambda, double* r_c) const {
@@ -128,6 +184,7 @@ void ContactPair::write_rows(double t, const std::vector<NodeKinematics>& nodes,
     for (int c = 0; c < d; ++c) r_c[i * d + c] = row.c[c];
     if (!jacobian) continue;
     slip_rows_[i] = s == NodeState::Slip ? row.d_slip : Mat3::Zero();
+    if (!owns(i)) continue;  // its owner writes the row
     const PetscInt row0 = offset + static_cast<PetscInt>(i) * d;
     for (int c = 0; c < d; ++c)
       for (int e = 0; e < d; ++e)
@@ -246,7 +303,11 @@ std::vector<int> ContactPair::multiplier_vertices() const {
 
 std::vector<nonlinear::MultiplierNode> ContactPair::nodes(double t, const std::vector<double>& u,
                                                          const double* lambda) const {
-  const std::vector<NodeKinematics>& kin = kinematics_at(t, u);
+  // Output may be written by one process: off the last evaluated point a distributed pair
+  // evaluates every node here rather than call the other processes.
+  std::vector<NodeKinematics> local;
+  if (distributed() && !at_last_evaluated(t, u)) local_kinematics(t, u, local);
+  const std::vector<NodeKinematics>& kin = local.empty() ? kinematics_at(t, u) : local;
   std::vector<nonlinear::MultiplierNode> out(slave_.n_nodes());
   for (int i = 0; i < slave_.n_nodes(); ++i) {
     nonlinear::MultiplierNode& node = out[i];

@@ -96,6 +96,7 @@ public:
   int update_states(double t, const std::vector<double>& u, const double* lambda, const double* dlambda) override;
   void states_held(const double* lambda, const double* dlambda) override;
   std::vector<char> states() const override;
+  void distribute(MPI_Comm comm, const std::vector<char>& owned) override;
   void schur_mass(nonlinear::SparseEntries& out, PetscInt offset) const override;
   void schur_stiffness(nonlinear::SparseEntries& out, PetscInt offset) const override;
   void schur_slip_coupling(nonlinear::SparseEntries& out, PetscInt offset) const override;
@@ -119,16 +120,26 @@ protected:
   // The master's part: kinematics of every slave node at u (with derivatives when asked; an
   // implementation may leave them out at inactive nodes, whose rows do not read them)
   // and, when r_u is not null, the constraint forces r_u -= B^T lambda (with the blocks
-  // -B^T and d(-B^T lambda)/du added to jacobian when it is not null).
+  // -B^T and d(-B^T lambda)/du added to jacobian when it is not null). Distributed
+  // (owns below), only the kinematics of the nodes this process owns count, and each part
+  // of the forces must be added by one process: the pair sums the forces and shares the
+  // owned nodes' kinematics over the processes.
   virtual void compute_kinematics(double t, const std::vector<double>& u, const double* lambda,
                                   std::vector<double>* r_u, nonlinear::SparseEntries* jacobian, PetscInt offset,
                                   bool with_derivatives, std::vector<NodeKinematics>& nodes) const = 0;
 
   // (t, u) is the point of the last evaluation without derivatives (whose kinematics
-  // kinematics_at keeps): a master may reuse what it found there.
+  // kinematics_at keeps): a master may reuse what it found there, and must record what it
+  // finds in an evaluation without derivatives unless recording() is false.
+  bool recording() const { return !whole_; }
   bool at_last_evaluated(double t, const std::vector<double>& u) const {
     return last_evaluated_.valid && last_evaluated_.t == t && last_evaluated_.u == u;
   }
+
+  // Whether this process evaluates slave node i as its own: every node on one process, and
+  // in an evaluation for this process alone (local_kinematics).
+  bool owns(int i) const { return whole_ || owned_.empty() || owned_[i]; }
+  bool distributed() const { return !owned_.empty() && !whole_; }
 
   int dim_;
   int slave_tag_;
@@ -147,12 +158,22 @@ private:
   // at the same point: a Newton iteration evaluates its iterate (the step's residual), then
   // updates the states and writes the rows of the new states there, and each evaluation of
   // a deformable master searches it for every slave quadrature point.
+  // Distributed, every process must call it at the same points (a new point is evaluated
+  // together).
   const std::vector<NodeKinematics>& kinematics_at(double t, const std::vector<double>& u) const;
   // Evaluates the kinematics without derivatives at (t, u) (and the forces into r_u when not
   // null) and keeps them as the last evaluated point's.
   void evaluate_kinematics(double t, const std::vector<double>& u, const double* lambda, std::vector<double>* r_u,
                            PetscInt offset) const;
-  // Writes r_c (and, with jacobian, C_u and C_l) from the nodes' kinematics.
+  // compute_kinematics, then, distributed, the forces summed and each owned node's
+  // kinematics (without derivatives) copied to every process.
+  void kinematics_everywhere(double t, const std::vector<double>& u, const double* lambda, std::vector<double>* r_u,
+                             nonlinear::SparseEntries* jacobian, PetscInt offset, bool with_derivatives,
+                             std::vector<NodeKinematics>& nodes) const;
+  // Every node's kinematics at (t, u) computed on this process alone, without collective
+  // calls (for output that one process writes), leaving the last evaluation's as they are.
+  void local_kinematics(double t, const std::vector<double>& u, std::vector<NodeKinematics>& nodes) const;
+  // Writes r_c (and, with jacobian, the owned rows of C_u and C_l) from the nodes' kinematics.
   void write_rows(double t, const std::vector<NodeKinematics>& nodes, const double* lambda, double* r_c,
                   nonlinear::SparseEntries* jacobian, PetscInt offset) const;
   // Pi X Pi of a slave-surface matrix X given as (row, column, value) entries.
@@ -160,6 +181,9 @@ private:
                      nonlinear::SparseEntries& out, PetscInt offset) const;
 
   std::string name_;
+  MPI_Comm comm_ = MPI_COMM_SELF;
+  std::vector<char> owned_;  // per slave node; empty: all (one process)
+  mutable bool whole_ = false;  // inside local_kinematics
   StateTolerances tolerances_;
   std::vector<NodeState> state_;
   std::vector<double> r_t_;

@@ -43,6 +43,7 @@ void RigidPlaneContact::compute_kinematics(double t, const std::vector<double>& 
   const Vec3 plane_slip = plane_motion(t) - plane_motion(t_previous_);
   nodes.assign(slave_.n_nodes(), NodeKinematics{});
   for (int i = 0; i < slave_.n_nodes(); ++i) {
+    if (!owns(i)) continue;  // distributed: node i's kinematics and forces come from its owner
     NodeKinematics& k = nodes[i];
     k.n = normal_;
     Vec3 moment = Vec3::Zero();

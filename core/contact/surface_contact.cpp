@@ -554,7 +554,8 @@ void SurfaceContact::nodal_normals(const std::vector<double>& u, const std::vect
   const fem::QuadratureRule rule = fem::simplex_quadrature(P, 3);  // phi_i |x,0 x x,1| is cubic
   std::vector<Vec> m(nodes.size(), Vec::Zero());
   std::vector<std::map<PetscInt, Vec>> dm(nodes.size());
-  for (const Facet& f : slave_facets_)
+  for (const Facet& f : slave_facets_) {
+    if (!evaluated_here(f)) continue;
     for (int q = 0; q < rule.size(); ++q) {
       const typename G::Param eta = Eigen::Map<const typename G::Param>(rule.point(q));
       const FacetPoint<D> p = ev.at(f, eta, u);
@@ -570,6 +571,7 @@ void SurfaceContact::nodal_normals(const std::vector<double>& u, const std::vect
                             wphi * facets::normal_variation<D>(f, p.dx, p.dN_of(a), c));
       }
     }
+  }
   for (size_t i = 0; i < nodes.size(); ++i) {
     const double length = m[i].norm();
     const Vec n = -m[i] / length;  // from the master towards the slave
@@ -579,6 +581,14 @@ void SurfaceContact::nodal_normals(const std::vector<double>& u, const std::vect
     for (const auto& [dof, column] : dm[i]) nodes[i].dn[dof] = lift<D>(Vec(-Pn * column));
   }
 }
+
+bool SurfaceContact::evaluated_here(const Facet& f) const {
+  for (int k = 0; k < dim_; ++k)
+    if (owns(f.node_of_vertex[k])) return true;
+  return false;
+}
+
+bool SurfaceContact::adds_forces(const Facet& f) const { return owns(f.node_of_vertex[0]); }
 
 void SurfaceContact::compute_kinematics(double t, const std::vector<double>& u, const double* lambda,
                                         std::vector<double>* r_u, nonlinear::SparseEntries* jacobian, PetscInt offset,
@@ -601,7 +611,7 @@ void SurfaceContact::kinematics(double t, const std::vector<double>& u, const do
   // of block-strips), and the derivative maps were most of its assembly time.
   std::vector<char> derive(slave_.n_nodes(), 0);
   if (with_derivatives)
-    for (int i = 0; i < slave_.n_nodes(); ++i) derive[i] = state(i) != NodeState::Inactive;
+    for (int i = 0; i < slave_.n_nodes(); ++i) derive[i] = owns(i) && state(i) != NodeState::Inactive;
   auto facet_derives = [&](const Facet& f) {
     if (!with_derivatives) return false;
     for (int k = 0; k < D; ++k) {
@@ -619,7 +629,7 @@ void SurfaceContact::kinematics(double t, const std::vector<double>& u, const do
   // The Jacobian at the last evaluated iterate replays that evaluation's search; an
   // evaluation without derivatives records its own.
   const bool replay = with_derivatives && found_.valid && at_last_evaluated(t, u);
-  const bool record = !with_derivatives;
+  const bool record = !with_derivatives && recording();
   if (record) {
     found_ = SearchRecord{};
     found_.facet_points.assign(slave_facets_.size() + 1, 0);
@@ -658,6 +668,8 @@ void SurfaceContact::kinematics(double t, const std::vector<double>& u, const do
   for (size_t k = 0; k < slave_facets_.size(); ++k) {
     const Facet& f = slave_facets_[k];
     if (record) found_.facet_points[k] = static_cast<int>(found_.points.size());
+    if (!evaluated_here(f)) continue;
+    const bool forces_here = r_u && adds_forces(f);
     MasterCandidates<D> candidates{&tree, &master_facets_, {},
                                    settings_.master_point == ContactSettings::MasterPoint::Closest};
     std::vector<std::pair<Param, double>> points;
@@ -694,9 +706,9 @@ void SurfaceContact::kinematics(double t, const std::vector<double>& u, const do
       for (int k = 0; k < D; ++k) {
         const int i = f.node_of_vertex[k];
         const double wphi = weight * jacobian_f * facets::vertex_hat<D>(k, eta);
-        add_node_kinematics<D>(ev, f, p, wphi, derive_f && derive[i], nodes[i]);
+        if (owns(i)) add_node_kinematics<D>(ev, f, p, wphi, derive_f && derive[i], nodes[i]);
         covered[i] += wphi;
-        if (!r_u) continue;
+        if (!forces_here) continue;
         Vec3 lam = Vec3::Zero();
         if (lambda)
           for (int c = 0; c < D; ++c) lam[c] = lambda[D * i + c];
@@ -704,7 +716,7 @@ void SurfaceContact::kinematics(double t, const std::vector<double>& u, const do
         add_node_forces<D>(ev, f, p, wphi, lam, offset + static_cast<PetscInt>(i) * D, *r_u,
                            jacobian ? &facet_entries : nullptr);
       }
-      if (r_u && jacobian && derive_f) add_force_variation<D>(ev, p, lam_w, facet_entries);
+      if (forces_here && jacobian && derive_f) add_force_variation<D>(ev, p, lam_w, facet_entries);
     }
     if (jacobian) facet_entries.flush_into(*jacobian);
   }

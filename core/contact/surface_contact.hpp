@@ -83,8 +83,13 @@ private:
   void kinematics(double t, const std::vector<double>& u, const double* lambda, std::vector<double>* r_u,
                   nonlinear::SparseEntries* jacobian, PetscInt offset, bool with_derivatives,
                   std::vector<NodeKinematics>& nodes) const;
+  // Distributed, a process integrates the facets holding one of its slave nodes (every
+  // integral of those nodes) and adds the forces of the facets whose first node it owns
+  // (each facet's forces once).
+  bool evaluated_here(const SurfaceFacet& f) const;
+  bool adds_forces(const SurfaceFacet& f) const;
   template <int D>
-  // n_i of every slave node; dn_i where derive[i].
+  // n_i of every slave node this process evaluates; dn_i where derive[i].
   void nodal_normals(const std::vector<double>& u, const std::vector<char>& derive,
                      std::vector<NodeKinematics>& nodes) const;
 

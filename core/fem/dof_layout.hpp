@@ -37,6 +37,7 @@ public:
   // PETSc's index of an app-ordered unknown, and whether this rank owns it.
   PetscInt global(PetscInt app) const { return identity() ? app : global_[app]; }
   bool owns(PetscInt app) const { return identity() || owner_[app] == rank_; }
+  int owner(PetscInt app) const { return identity() ? 0 : owner_[app]; }
 
   // A vector of the whole system's size with this layout's ownership.
   Vec create_vector() const;

@@ -137,6 +137,49 @@ void merge_rows(PetscInt an, const PetscInt* a_cols, const PetscScalar* a_values
   }
 }
 
+// The entries of e whose rows this rank owns: its own in the order computed, then those the
+// other ranks computed for its rows, by sending rank (a fixed order: the sums of duplicates
+// are the same on every run).
+SparseEntries entries_of_owned_rows(const fem::DofLayout& layout, const SparseEntries& e) {
+  const MPI_Comm comm = layout.comm();
+  int size = 1, rank = 0;
+  MPI_Comm_size(comm, &size);
+  MPI_Comm_rank(comm, &rank);
+  SparseEntries out;
+  std::vector<int> send_count(static_cast<size_t>(size), 0), recv_count(static_cast<size_t>(size));
+  for (size_t k = 0; k < e.size(); ++k) {
+    const int owner = layout.owner(e.rows[k]);
+    if (owner == rank) out.add(e.rows[k], e.cols[k], e.values[k]);
+    else ++send_count[static_cast<size_t>(owner)];
+  }
+  std::vector<int> send_first(static_cast<size_t>(size) + 1, 0), recv_first(static_cast<size_t>(size) + 1, 0);
+  std::partial_sum(send_count.begin(), send_count.end(), send_first.begin() + 1);
+  MPI_Alltoall(send_count.data(), 1, MPI_INT, recv_count.data(), 1, MPI_INT, comm);
+  std::partial_sum(recv_count.begin(), recv_count.end(), recv_first.begin() + 1);
+  SparseEntries send;
+  send.rows.resize(static_cast<size_t>(send_first.back()));
+  send.cols.resize(send.rows.size());
+  send.values.resize(send.rows.size());
+  std::vector<int> next(send_first.begin(), send_first.end() - 1);
+  for (size_t k = 0; k < e.size(); ++k) {
+    const int owner = layout.owner(e.rows[k]);
+    if (owner == rank) continue;
+    const size_t at = static_cast<size_t>(next[static_cast<size_t>(owner)]++);
+    send.rows[at] = e.rows[k], send.cols[at] = e.cols[k], send.values[at] = e.values[k];
+  }
+  const size_t n_own = out.size(), n_received = static_cast<size_t>(recv_first.back());
+  out.rows.resize(n_own + n_received);
+  out.cols.resize(n_own + n_received);
+  out.values.resize(n_own + n_received);
+  MPI_Alltoallv(send.rows.data(), send_count.data(), send_first.data(), MPIU_INT,
+                out.rows.data() + n_own, recv_count.data(), recv_first.data(), MPIU_INT, comm);
+  MPI_Alltoallv(send.cols.data(), send_count.data(), send_first.data(), MPIU_INT,
+                out.cols.data() + n_own, recv_count.data(), recv_first.data(), MPIU_INT, comm);
+  MPI_Alltoallv(send.values.data(), send_count.data(), send_first.data(), MPIU_SCALAR,
+                out.values.data() + n_own, recv_count.data(), recv_first.data(), MPIU_SCALAR, comm);
+  return out;
+}
+
 }  // namespace
 
 Mat build_distributed_augmented_matrix(Mat tangent, const fem::DofLayout& layout, PetscInt n_u,
@@ -147,9 +190,11 @@ Mat build_distributed_augmented_matrix(Mat tangent, const fem::DofLayout& layout
   SparseEntries owned;
   for (PetscInt a = n_u; a < n_total; ++a)
     if (layout.owns(a)) owned.add(layout.global(a) - first, layout.global(a), 0.0);
-  for (size_t k = 0; k < extra.size(); ++k)
-    if (layout.owns(extra.rows[k]))
-      owned.add(layout.global(extra.rows[k]) - first, layout.global(extra.cols[k]), extra.values[k]);
+  {
+    const SparseEntries mine = entries_of_owned_rows(layout, extra);
+    for (size_t k = 0; k < mine.size(); ++k)
+      owned.add(layout.global(mine.rows[k]) - first, layout.global(mine.cols[k]), mine.values[k]);
+  }
   const CompressedRows e = compress(n_owned, owned, n_owned);
   owned = SparseEntries();
 

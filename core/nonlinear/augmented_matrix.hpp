@@ -20,11 +20,11 @@ Mat build_augmented_matrix(MPI_Comm comm, CsrArrays tangent, PetscInt m, const S
                            PetscInt block_size);
 
 // On several ranks: the distributed tangent (the whole system's size, in the layout's
-// numbering, multiplier rows empty) bordered by the entries of extra (app numbering, the
-// same on every rank) whose rows this rank owns, as a new MPIAIJ matrix: each owned row is
-// the tangent's row merged with its compressed constraint entries, counted once for an
-// exact preallocation and then inserted whole (no entry leaves its rank). The tangent is
-// copied: both exist until the caller drops it.
+// numbering, multiplier rows empty) bordered by the entries of extra (app numbering, any
+// row; each entry computed on one rank only), as a new MPIAIJ matrix. Entries of another
+// rank's rows are sent to it first; each owned row is then the tangent's row merged with
+// its compressed constraint entries, counted once for an exact preallocation and inserted
+// whole. The tangent is copied: both exist until the caller drops it.
 // n_u: the first multiplier unknown (its rows get their diagonal, as above).
 Mat build_distributed_augmented_matrix(Mat tangent, const fem::DofLayout& layout, PetscInt n_u,
                                        const SparseEntries& extra, PetscInt block_size);

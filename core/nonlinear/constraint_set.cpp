@@ -20,6 +20,14 @@ std::vector<int> ConstraintSet::multiplier_vertices() const {
   return out;
 }
 
+void ConstraintSet::distribute(const fem::DofLayout& layout, PetscInt n_u) {
+  for (size_t k = 0; k < constraints_.size(); ++k) {
+    std::vector<char> owned(layout.identity() ? 0 : static_cast<size_t>(constraints_[k]->n_multipliers()));
+    for (size_t j = 0; j < owned.size(); ++j) owned[j] = layout.owns(n_u + offset_[k] + static_cast<PetscInt>(j));
+    constraints_[k]->distribute(layout.comm(), owned);
+  }
+}
+
 void ConstraintSet::begin_increment(double t_start, const std::vector<double>& u) {
   for (auto* c : constraints_) c->begin_increment(t_start, u);
 }

@@ -7,6 +7,7 @@
 #include <functional>
 #include <vector>
 
+#include "fem/dof_layout.hpp"
 #include "nonlinear/multiplier_constraint.hpp"
 
 namespace stiction::nonlinear {
@@ -21,6 +22,9 @@ public:
   std::vector<int> multiplier_vertices() const;
   size_t size() const { return constraints_.size(); }
 
+  // On several processes: tells each constraint which of its multipliers this process owns
+  // (multiplier k of the set is unknown n_u + k of the layout).
+  void distribute(const fem::DofLayout& layout, PetscInt n_u);
   void begin_increment(double t_start, const std::vector<double>& u);
   // r_u -= B^T lambda; r_c (resized to n_multipliers) the rows of the current states; with
   // jacobian, the blocks of (30) in the augmented numbering of a system with n_u unknowns

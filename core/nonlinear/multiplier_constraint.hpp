@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include <mpi.h>
 #include <petscsys.h>
 
 namespace stiction::nonlinear {
@@ -57,6 +58,15 @@ public:
   // The mesh vertex (slave node) each multiplier belongs to, n_multipliers() entries: the
   // rank that owns the vertex owns the multiplier's row (fem::DofLayout).
   virtual std::vector<int> multiplier_vertices() const = 0;
+  // In a run on several processes: the communicator and which of the constraint's
+  // multipliers this process owns (owned[k] for multiplier k; the rows of a node's
+  // multipliers have one owner). From then on a constraint may evaluate on each process only
+  // what that process owns, provided evaluate still returns, on every process, every r_c
+  // entry and the whole constraint force on r_u, and the Jacobian entries it computes
+  // (any row) are computed by one process alone: the system builder sends each entry to
+  // the owner of its row. Without the call, or with owned empty, every process evaluates
+  // everything.
+  virtual void distribute(MPI_Comm comm, const std::vector<char>& owned) {}
   // At the start of a load increment from pseudo-time t_start, u is the converged state there:
   // the reference of the tangential slip increments (15)-(16).
   virtual void begin_increment(double t_start, const std::vector<double>& u) = 0;
@@ -99,7 +109,7 @@ public:
   // traction integrals the Newton driver reports per load step (paper's F4, F5).
   virtual std::vector<std::pair<std::string, int>> surfaces() const { return {}; }
   // Every multiplier node at (t, u, lambda) for reports; lambda points at this constraint's
-  // multipliers.
+  // multipliers. One process may call it alone (it writes the output).
   virtual std::vector<MultiplierNode> nodes(double t, const std::vector<double>& u, const double* lambda) const = 0;
 };
 

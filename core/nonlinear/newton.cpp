@@ -92,7 +92,9 @@ QuasiStaticSolver::QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& pro
       layout_(comm, *problem.space, partition_, constraints_.multiplier_vertices()),
       builder_(layout_, problem, constraints_.n_multipliers()),
       u_(problem.space->n_dofs(), 0.0),
-      lambda_(constraints_.n_multipliers(), 0.0) {}
+      lambda_(constraints_.n_multipliers(), 0.0) {
+  constraints_.distribute(layout_, problem.space->n_dofs());
+}
 
 fem::InternalForceStatus QuasiStaticSolver::residual(double t, const std::vector<double>& u,
                                                      std::vector<double>& r) const {

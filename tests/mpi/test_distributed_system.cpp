@@ -20,6 +20,7 @@
 #include "builtin_scenes.hpp"
 #include "common/petsc.hpp"
 #include "fem/mesh_partition.hpp"
+#include "nonlinear/constraint_set.hpp"
 #include "nonlinear/newton.hpp"
 #include "registry.hpp"
 
@@ -167,6 +168,65 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DistributedSystem,
                                            Case{"cook-membrane-3d", "lu-mumps", 1}),
                          [](const auto& info) {
                            std::string n = info.param.scene;
+                           std::replace(n.begin(), n.end(), '-', '_');
+                           return n;
+                         });
+
+// Distributed, each process evaluates the contact of its own slave nodes: the Jacobian
+// entries the processes compute together are the one-process entries, each computed once
+// (summed over the processes, |entries| equals the one-process sum; were every process to
+// evaluate everything, it would be twice that), and every process still gets the whole
+// residual. At the converged state of the scene's short run, where nodes press and slip.
+class DistributedContact : public ::testing::TestWithParam<const char*> {};
+
+double abs_sum(const nonlinear::SparseEntries& e) {
+  double s = 0;
+  for (double v : e.values) s += std::abs(v);
+  return s;
+}
+
+TEST_P(DistributedContact, EachProcessComputesItsShareOnce) {
+  int processes = 1;
+  MPI_Comm_size(PETSC_COMM_WORLD, &processes);
+  ASSERT_EQ(processes, 2) << "run under mpirun -n 2";
+  auto scene = harness::open_scene(GetParam(), 0, {});
+  auto solver = solvers::create_solver("lu-mumps", PETSC_COMM_WORLD);
+  nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, scene->problem, scene->newton, *solver);
+  const auto steps = newton.run({}, 1, scene->problem.step_reaching(scene->quick_until));
+  ASSERT_FALSE(steps.empty());
+  ASSERT_TRUE(steps.back().converged());
+  nonlinear::ConstraintSet constraints(scene->problem.constraints);
+  ASSERT_FALSE(constraints.all_free()) << "no node in contact at the end of the short run";
+  const PetscInt n_u = scene->problem.space->n_dofs();
+  const double t = steps.back().time;
+  const std::vector<double>& u = newton.displacement();
+  const std::vector<double>& lambda = newton.multipliers();
+
+  auto evaluate = [&](nonlinear::SparseEntries& jacobian, std::vector<double>& r_u, std::vector<double>& r_c) {
+    r_u.assign(static_cast<size_t>(n_u), 0.0);
+    constraints.evaluate(t, u, lambda, r_u, r_c, &jacobian, n_u);
+  };
+  nonlinear::SparseEntries share, whole;
+  std::vector<double> r_u_shared, r_c_shared, r_u_alone, r_c_alone;
+  evaluate(share, r_u_shared, r_c_shared);
+  for (auto* c : scene->problem.constraints) c->distribute(PETSC_COMM_SELF, {});
+  evaluate(whole, r_u_alone, r_c_alone);
+
+  double shared_sum = abs_sum(share);
+  MPI_Allreduce(MPI_IN_PLACE, &shared_sum, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  EXPECT_NEAR(shared_sum, abs_sum(whole), 1e-10 * abs_sum(whole));
+  long long shared_entries = static_cast<long long>(share.size());
+  MPI_Allreduce(MPI_IN_PLACE, &shared_entries, 1, MPI_LONG_LONG, MPI_SUM, PETSC_COMM_WORLD);
+  EXPECT_LE(shared_entries, static_cast<long long>(whole.size()));
+  EXPECT_LT(max_difference(r_u_shared, r_u_alone), 1e-12 * max_abs(r_u_alone));
+  EXPECT_LT(max_difference(r_c_shared, r_c_alone), 1e-12 * std::max(max_abs(r_c_alone), 1e-300));
+}
+
+// Deformable master in 2D and 3D (self-contact), rigid plane with friction.
+INSTANTIATE_TEST_SUITE_P(Scenes, DistributedContact,
+                         ::testing::Values("self-contact-2d", "hertz-spheres-3d", "sliding-block-2d"),
+                         [](const auto& info) {
+                           std::string n = info.param;
                            std::replace(n.begin(), n.end(), '-', '_');
                            return n;
                          });
