@@ -9,6 +9,30 @@ PetscErrorCode destroy_arrays(void* ctx) {
   return 0;
 }
 
+PetscErrorCode destroy_split_arrays(void* ctx) {
+  delete static_cast<SplitCsrArrays*>(ctx);
+  return 0;
+}
+
+// Attaches the arrays to A (deleted with it through destroy).
+template <class Arrays>
+void keep_with(Mat A, Arrays* arrays, PetscErrorCode (*destroy)(void*)) {
+  PetscContainer container = nullptr;
+  try {
+    STICTION_PETSC(PetscContainerCreate(PetscObjectComm(reinterpret_cast<PetscObject>(A)), &container));
+    STICTION_PETSC(PetscContainerSetPointer(container, arrays));
+    STICTION_PETSC(PetscContainerSetUserDestroy(container, destroy));
+  } catch (...) {
+    if (!container) delete arrays;
+    PetscContainerDestroy(&container);
+    throw;
+  }
+  // The matrix holds the only lasting reference to the container: the arrays go with it.
+  STICTION_PETSC(PetscObjectCompose(reinterpret_cast<PetscObject>(A), "stiction_csr_arrays",
+                                    reinterpret_cast<PetscObject>(container)));
+  STICTION_PETSC(PetscContainerDestroy(&container));
+}
+
 }  // namespace
 
 Mat seq_aij_over(MPI_Comm comm, PetscInt rows, CsrArrays arrays) {
@@ -22,23 +46,48 @@ Mat seq_aij_over(MPI_Comm comm, PetscInt rows, CsrArrays arrays) {
   // MatCreateSeqAIJWithArrays takes non-const pointers; it never writes the pattern.
   auto* owned = new CsrArrays(std::move(arrays));
   Mat A = nullptr;
-  PetscContainer container = nullptr;
   try {
     STICTION_PETSC(MatCreateSeqAIJWithArrays(comm, rows, rows, const_cast<PetscInt*>(owned->row_start->data()),
                                              const_cast<PetscInt*>(owned->columns->data()), owned->values->data(), &A));
-    STICTION_PETSC(PetscContainerCreate(comm, &container));
-    STICTION_PETSC(PetscContainerSetPointer(container, owned));
-    STICTION_PETSC(PetscContainerSetUserDestroy(container, destroy_arrays));
   } catch (...) {
-    if (!container) delete owned;
-    PetscContainerDestroy(&container);
+    delete owned;
+    throw;
+  }
+  try {
+    keep_with(A, owned, destroy_arrays);
+  } catch (...) {
     MatDestroy(&A);
     throw;
   }
-  // The matrix holds the only lasting reference to the container: the arrays go with it.
-  STICTION_PETSC(PetscObjectCompose(reinterpret_cast<PetscObject>(A), "stiction_csr_arrays",
-                                    reinterpret_cast<PetscObject>(container)));
-  STICTION_PETSC(PetscContainerDestroy(&container));
+  STICTION_PETSC(MatSetOption(A, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
+  return A;
+}
+
+Mat mpi_aij_over(MPI_Comm comm, PetscInt rows, PetscInt global_rows, SplitCsrArrays arrays) {
+  if (arrays.diagonal_start.size() != static_cast<size_t>(rows) + 1 ||
+      arrays.off_diagonal_start.size() != static_cast<size_t>(rows) + 1 ||
+      static_cast<size_t>(arrays.diagonal_start.back()) > arrays.diagonal_columns.size() ||
+      arrays.diagonal_columns.size() != arrays.diagonal_values.size() ||
+      static_cast<size_t>(arrays.off_diagonal_start.back()) > arrays.off_diagonal_columns.size() ||
+      arrays.off_diagonal_columns.size() != arrays.off_diagonal_values.size())
+    throw Error("split compressed-row matrix: array sizes disagree", ErrorKind::Internal);
+  auto* owned = new SplitCsrArrays(std::move(arrays));
+  Mat A = nullptr;
+  try {
+    STICTION_PETSC(MatCreateMPIAIJWithSplitArrays(
+        comm, rows, rows, global_rows, global_rows, owned->diagonal_start.data(), owned->diagonal_columns.data(),
+        owned->diagonal_values.data(), owned->off_diagonal_start.data(), owned->off_diagonal_columns.data(),
+        owned->off_diagonal_values.data(), &A));
+  } catch (...) {
+    delete owned;
+    throw;
+  }
+  try {
+    keep_with(A, owned, destroy_split_arrays);
+  } catch (...) {
+    MatDestroy(&A);
+    throw;
+  }
   STICTION_PETSC(MatSetOption(A, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
   return A;
 }

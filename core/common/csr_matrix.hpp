@@ -20,4 +20,18 @@ struct CsrArrays {
 // matrix made this way (new nonzeros are an error).
 Mat seq_aij_over(MPI_Comm comm, PetscInt rows, CsrArrays arrays);
 
+// One process's rows of a distributed AIJ matrix in PETSc's MPIAIJ split: the diagonal
+// part (columns of the process's own range, numbered from its first) and the off-diagonal
+// part (global columns), each in compressed rows, columns ascending within a row.
+struct SplitCsrArrays {
+  std::vector<PetscInt> diagonal_start, diagonal_columns, off_diagonal_start, off_diagonal_columns;
+  std::vector<PetscScalar> diagonal_values, off_diagonal_values;
+};
+
+// The square global_rows x global_rows MPIAIJ matrix of which this process owns `rows`
+// consecutive rows, over the arrays without copying them (MatCreateMPIAIJWithSplitArrays):
+// the matrix keeps them alive; PETSc renumbers the off-diagonal columns in place when it
+// assembles. Its pattern is fixed (new nonzeros are an error).
+Mat mpi_aij_over(MPI_Comm comm, PetscInt rows, PetscInt global_rows, SplitCsrArrays arrays);
+
 }  // namespace stiction

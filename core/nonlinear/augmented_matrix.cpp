@@ -120,19 +120,20 @@ Mat build_augmented_matrix(MPI_Comm comm, CsrArrays tangent, PetscInt m, const S
 
 namespace {
 
-// The union of two sorted rows, values summed where both have a column.
-void merge_rows(PetscInt an, const PetscInt* a_cols, const PetscScalar* a_values, PetscInt bn, const PetscInt* b_cols,
-                const PetscScalar* b_values, std::vector<PetscInt>& cols, std::vector<PetscScalar>& values) {
-  cols.clear();
-  values.clear();
+// Appends the union of two rows to cols and values in ascending column order (values
+// summed where both have a column); row a's k-th column is a_column(k).
+template <class ColumnOfA>
+void append_union(PetscInt an, ColumnOfA a_column, const PetscScalar* a_values, PetscInt bn, const PetscInt* b_cols,
+                  const PetscScalar* b_values, std::vector<PetscInt>& cols, std::vector<PetscScalar>& values) {
   PetscInt i = 0, j = 0;
   while (i < an || j < bn) {
-    if (j == bn || (i < an && a_cols[i] < b_cols[j])) {
-      cols.push_back(a_cols[i]), values.push_back(a_values[i]), ++i;
-    } else if (i == an || b_cols[j] < a_cols[i]) {
+    const PetscInt a = i < an ? a_column(i) : 0;
+    if (j == bn || (i < an && a < b_cols[j])) {
+      cols.push_back(a), values.push_back(a_values[i]), ++i;
+    } else if (i == an || b_cols[j] < a) {
       cols.push_back(b_cols[j]), values.push_back(b_values[j]), ++j;
     } else {
-      cols.push_back(a_cols[i]), values.push_back(a_values[i] + b_values[j]), ++i, ++j;
+      cols.push_back(a), values.push_back(a_values[i] + b_values[j]), ++i, ++j;
     }
   }
 }
@@ -198,43 +199,61 @@ Mat build_distributed_augmented_matrix(Mat tangent, const fem::DofLayout& layout
   const CompressedRows e = compress(n_owned, owned, n_owned);
   owned = SparseEntries();
 
-  // Each owned row: the tangent's row merged with the constraint entries. Counted first
-  // (exact preallocation), then inserted whole and in column order: PETSc appends.
-  std::vector<PetscInt> cols;
-  std::vector<PetscScalar> values;
-  auto merged_row = [&](PetscInt r, auto&& use) {
+  // Each owned row: the tangent's row merged with the constraint entries, straight from
+  // and into the MPIAIJ split (diagonal part in local columns, off-diagonal part in the
+  // tangent's compressed columns, ascending through its column map), without MatGetRow or
+  // MatSetValues: the new matrix is made over the merged arrays.
+  Mat parts[2];
+  const PetscInt* column_map;
+  STICTION_PETSC(MatMPIAIJGetSeqAIJ(tangent, &parts[0], &parts[1], &column_map));
+  const PetscInt *ia[2], *ja[2];
+  const PetscScalar* va[2];
+  for (int k = 0; k < 2; ++k) {
     PetscInt n;
-    const PetscInt* t_cols;
-    const PetscScalar* t_values;
-    STICTION_PETSC(MatGetRow(tangent, first + r, &n, &t_cols, &t_values));
-    merge_rows(n, t_cols, t_values, e.start[r + 1] - e.start[r], e.cols.data() + e.start[r],
-               e.values.data() + e.start[r], cols, values);
-    STICTION_PETSC(MatRestoreRow(tangent, first + r, &n, &t_cols, &t_values));
-    use(first + r);
-  };
-  std::vector<PetscInt> d_nnz(static_cast<size_t>(n_owned)), o_nnz(static_cast<size_t>(n_owned));
-  for (PetscInt r = 0; r < n_owned; ++r)
-    merged_row(r, [&](PetscInt) {
-      const auto in_diagonal =
-          std::count_if(cols.begin(), cols.end(), [&](PetscInt c) { return c >= first && c < first + n_owned; });
-      d_nnz[static_cast<size_t>(r)] = static_cast<PetscInt>(in_diagonal);
-      o_nnz[static_cast<size_t>(r)] = static_cast<PetscInt>(cols.size() - in_diagonal);
-    });
-  Mat A;
-  STICTION_PETSC(MatCreate(layout.comm(), &A));
-  STICTION_PETSC(MatSetSizes(A, n_owned, n_owned, n_total, n_total));
-  STICTION_PETSC(MatSetType(A, MATMPIAIJ));
+    PetscBool done;
+    STICTION_PETSC(MatGetRowIJ(parts[k], 0, PETSC_FALSE, PETSC_FALSE, &n, &ia[k], &ja[k], &done));
+    if (!done || n != n_owned) throw Error("augmented matrix: the tangent's rows are not this rank's", ErrorKind::Internal);
+    STICTION_PETSC(MatSeqAIJGetArrayRead(parts[k], &va[k]));
+  }
+  SplitCsrArrays out;
+  out.diagonal_start.assign(1, 0);
+  out.off_diagonal_start.assign(1, 0);
+  out.diagonal_columns.reserve(static_cast<size_t>(ia[0][n_owned]) + e.cols.size());
+  out.diagonal_values.reserve(out.diagonal_columns.capacity());
+  out.off_diagonal_columns.reserve(static_cast<size_t>(ia[1][n_owned]) + e.cols.size());
+  out.off_diagonal_values.reserve(out.off_diagonal_columns.capacity());
+  std::vector<PetscInt> b_cols;
+  std::vector<PetscScalar> b_values;
+  for (PetscInt r = 0; r < n_owned; ++r) {
+    const PetscInt* c = e.cols.data() + e.start[r];
+    const PetscScalar* v = e.values.data() + e.start[r];
+    const PetscInt m = e.start[r + 1] - e.start[r];
+    const PetscInt lo = std::lower_bound(c, c + m, first) - c, hi = std::lower_bound(c, c + m, first + n_owned) - c;
+    b_cols.clear();
+    for (PetscInt k = lo; k < hi; ++k) b_cols.push_back(c[k] - first);
+    const PetscInt* d_cols = ja[0] + ia[0][r];
+    append_union(ia[0][r + 1] - ia[0][r], [&](PetscInt k) { return d_cols[k]; }, va[0] + ia[0][r], hi - lo,
+                 b_cols.data(), v + lo, out.diagonal_columns, out.diagonal_values);
+    out.diagonal_start.push_back(static_cast<PetscInt>(out.diagonal_columns.size()));
+    b_cols.assign(c, c + lo);
+    b_cols.insert(b_cols.end(), c + hi, c + m);
+    b_values.assign(v, v + lo);
+    b_values.insert(b_values.end(), v + hi, v + m);
+    const PetscInt* o_cols = ja[1] + ia[1][r];
+    append_union(ia[1][r + 1] - ia[1][r], [&](PetscInt k) { return column_map[o_cols[k]]; }, va[1] + ia[1][r],
+                 static_cast<PetscInt>(b_cols.size()), b_cols.data(), b_values.data(), out.off_diagonal_columns,
+                 out.off_diagonal_values);
+    out.off_diagonal_start.push_back(static_cast<PetscInt>(out.off_diagonal_columns.size()));
+  }
+  for (int k = 0; k < 2; ++k) {
+    PetscInt n;
+    PetscBool done;
+    STICTION_PETSC(MatSeqAIJRestoreArrayRead(parts[k], &va[k]));
+    STICTION_PETSC(MatRestoreRowIJ(parts[k], 0, PETSC_FALSE, PETSC_FALSE, &n, &ia[k], &ja[k], &done));
+  }
+  Mat A = mpi_aij_over(layout.comm(), n_owned, n_total, std::move(out));
   if (block_size > 1 && n_owned % block_size == 0 && n_total % block_size == 0)
     STICTION_PETSC(MatSetBlockSize(A, block_size));
-  STICTION_PETSC(MatMPIAIJSetPreallocation(A, 0, d_nnz.data(), 0, o_nnz.data()));
-  STICTION_PETSC(MatSetOption(A, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));
-  for (PetscInt r = 0; r < n_owned; ++r)
-    merged_row(r, [&](PetscInt row) {
-      STICTION_PETSC(MatSetValues(A, 1, &row, static_cast<PetscInt>(cols.size()), cols.data(), values.data(),
-                                  INSERT_VALUES));
-    });
-  STICTION_PETSC(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
-  STICTION_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
   return A;
 }
 

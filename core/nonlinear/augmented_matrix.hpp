@@ -23,8 +23,9 @@ Mat build_augmented_matrix(MPI_Comm comm, CsrArrays tangent, PetscInt m, const S
 // numbering, multiplier rows empty) bordered by the entries of extra (app numbering, any
 // row; each entry computed on one rank only), as a new MPIAIJ matrix. Entries of another
 // rank's rows are sent to it first; each owned row is then the tangent's row merged with
-// its compressed constraint entries, counted once for an exact preallocation and inserted
-// whole. The tangent is copied: both exist until the caller drops it.
+// its compressed constraint entries, read from and written into PETSc's MPIAIJ split
+// (diagonal and off-diagonal parts), and the new matrix is made over the merged arrays.
+// The tangent is copied: both exist until the caller drops it.
 // n_u: the first multiplier unknown (its rows get their diagonal, as above).
 Mat build_distributed_augmented_matrix(Mat tangent, const fem::DofLayout& layout, PetscInt n_u,
                                        const SparseEntries& extra, PetscInt block_size);
