@@ -147,11 +147,12 @@ SparseEntries entries_of_owned_rows(const fem::DofLayout& layout, const SparseEn
   MPI_Comm_size(comm, &size);
   MPI_Comm_rank(comm, &rank);
   SparseEntries out;
+  std::vector<int> owner(e.size());
   std::vector<int> send_count(static_cast<size_t>(size), 0), recv_count(static_cast<size_t>(size));
   for (size_t k = 0; k < e.size(); ++k) {
-    const int owner = layout.owner(e.rows[k]);
-    if (owner == rank) out.add(e.rows[k], e.cols[k], e.values[k]);
-    else ++send_count[static_cast<size_t>(owner)];
+    owner[k] = layout.owner(e.rows[k]);
+    if (owner[k] == rank) out.add(e.rows[k], e.cols[k], e.values[k]);
+    else ++send_count[static_cast<size_t>(owner[k])];
   }
   std::vector<int> send_first(static_cast<size_t>(size) + 1, 0), recv_first(static_cast<size_t>(size) + 1, 0);
   std::partial_sum(send_count.begin(), send_count.end(), send_first.begin() + 1);
@@ -163,9 +164,8 @@ SparseEntries entries_of_owned_rows(const fem::DofLayout& layout, const SparseEn
   send.values.resize(send.rows.size());
   std::vector<int> next(send_first.begin(), send_first.end() - 1);
   for (size_t k = 0; k < e.size(); ++k) {
-    const int owner = layout.owner(e.rows[k]);
-    if (owner == rank) continue;
-    const size_t at = static_cast<size_t>(next[static_cast<size_t>(owner)]++);
+    if (owner[k] == rank) continue;
+    const size_t at = static_cast<size_t>(next[static_cast<size_t>(owner[k])]++);
     send.rows[at] = e.rows[k], send.cols[at] = e.cols[k], send.values[at] = e.values[k];
   }
   const size_t n_own = out.size(), n_received = static_cast<size_t>(recv_first.back());
@@ -181,46 +181,72 @@ SparseEntries entries_of_owned_rows(const fem::DofLayout& layout, const SparseEn
   return out;
 }
 
-}  // namespace
-
-Mat build_distributed_augmented_matrix(Mat tangent, const fem::DofLayout& layout, PetscInt n_u,
-                                       const SparseEntries& extra, PetscInt block_size) {
-  const PetscInt first = layout.first_owned(), n_owned = layout.n_owned(), n_total = layout.n_total();
-  // This rank's rows of the constraint blocks, compressed (local rows, PETSc's columns,
-  // duplicates summed in the order added, as on one rank), with the multiplier diagonals.
+// This rank's rows of the constraint blocks, compressed (local rows, PETSc's columns,
+// duplicates summed in the order added, as on one rank), with the multiplier diagonals.
+CompressedRows owned_constraint_rows(const fem::DofLayout& layout, PetscInt n_u, const SparseEntries& extra) {
+  const PetscInt first = layout.first_owned();
   SparseEntries owned;
-  for (PetscInt a = n_u; a < n_total; ++a)
+  for (PetscInt a = n_u; a < layout.n_total(); ++a)
     if (layout.owns(a)) owned.add(layout.global(a) - first, layout.global(a), 0.0);
-  {
-    const SparseEntries mine = entries_of_owned_rows(layout, extra);
-    for (size_t k = 0; k < mine.size(); ++k)
-      owned.add(layout.global(mine.rows[k]) - first, layout.global(mine.cols[k]), mine.values[k]);
-  }
-  const CompressedRows e = compress(n_owned, owned, n_owned);
-  owned = SparseEntries();
+  const SparseEntries mine = entries_of_owned_rows(layout, extra);
+  for (size_t k = 0; k < mine.size(); ++k)
+    owned.add(layout.global(mine.rows[k]) - first, layout.global(mine.cols[k]), mine.values[k]);
+  return compress(layout.n_owned(), owned, layout.n_owned());
+}
 
-  // Each owned row: the tangent's row merged with the constraint entries, straight from
-  // and into the MPIAIJ split (diagonal part in local columns, off-diagonal part in the
-  // tangent's compressed columns, ascending through its column map), without MatGetRow or
-  // MatSetValues: the new matrix is made over the merged arrays.
-  Mat parts[2];
-  const PetscInt* column_map;
-  STICTION_PETSC(MatMPIAIJGetSeqAIJ(tangent, &parts[0], &parts[1], &column_map));
-  const PetscInt *ia[2], *ja[2];
-  const PetscScalar* va[2];
-  for (int k = 0; k < 2; ++k) {
-    PetscInt n;
-    PetscBool done;
-    STICTION_PETSC(MatGetRowIJ(parts[k], 0, PETSC_FALSE, PETSC_FALSE, &n, &ia[k], &ja[k], &done));
-    if (!done || n != n_owned) throw Error("augmented matrix: the tangent's rows are not this rank's", ErrorKind::Internal);
-    STICTION_PETSC(MatSeqAIJGetArrayRead(parts[k], &va[k]));
+// Read access to an MPIAIJ matrix's local split: the diagonal part (local columns) and the
+// off-diagonal part (compressed columns, ascending through column_map), as CSR arrays;
+// returned to PETSc on destruction.
+class SplitRowsView {
+public:
+  SplitRowsView(Mat A, PetscInt n_rows) {
+    STICTION_PETSC(MatMPIAIJGetSeqAIJ(A, &parts_[0], &parts_[1], &column_map));
+    try {
+      for (int k = 0; k < 2; ++k) {
+        PetscInt n;
+        PetscBool done;
+        STICTION_PETSC(MatGetRowIJ(parts_[k], 0, PETSC_FALSE, PETSC_FALSE, &n, &start[k], &cols[k], &done));
+        if (!done || n != n_rows)
+          throw Error("augmented matrix: the tangent's rows are not this rank's", ErrorKind::Internal);
+        STICTION_PETSC(MatSeqAIJGetArrayRead(parts_[k], &values[k]));
+      }
+    } catch (...) {
+      release();  // a constructor that throws gets no destructor call
+      throw;
+    }
   }
+  ~SplitRowsView() { release(); }
+  SplitRowsView(const SplitRowsView&) = delete;
+  SplitRowsView& operator=(const SplitRowsView&) = delete;
+
+  const PetscInt* column_map = nullptr;
+  const PetscInt *start[2] = {}, *cols[2] = {};  // [0] diagonal part, [1] off-diagonal part
+  const PetscScalar* values[2] = {};
+
+private:
+  // Returns what was taken (PETSc's calls cannot fail here once the matching Get succeeded).
+  void release() {
+    for (int k = 0; k < 2; ++k) {
+      PetscInt n;
+      PetscBool done;
+      if (values[k]) MatSeqAIJRestoreArrayRead(parts_[k], &values[k]);
+      if (start[k]) MatRestoreRowIJ(parts_[k], 0, PETSC_FALSE, PETSC_FALSE, &n, &start[k], &cols[k], &done);
+      values[k] = nullptr, start[k] = cols[k] = nullptr;
+    }
+  }
+
+  Mat parts_[2] = {};
+};
+
+// Each owned row of the tangent (its split) merged with the same row of the constraint
+// entries e (PETSc's columns) into new split arrays.
+SplitCsrArrays merge_split_rows(const SplitRowsView& t, const CompressedRows& e, PetscInt first, PetscInt n_owned) {
   SplitCsrArrays out;
   out.diagonal_start.assign(1, 0);
   out.off_diagonal_start.assign(1, 0);
-  out.diagonal_columns.reserve(static_cast<size_t>(ia[0][n_owned]) + e.cols.size());
+  out.diagonal_columns.reserve(static_cast<size_t>(t.start[0][n_owned]) + e.cols.size());
   out.diagonal_values.reserve(out.diagonal_columns.capacity());
-  out.off_diagonal_columns.reserve(static_cast<size_t>(ia[1][n_owned]) + e.cols.size());
+  out.off_diagonal_columns.reserve(static_cast<size_t>(t.start[1][n_owned]) + e.cols.size());
   out.off_diagonal_values.reserve(out.off_diagonal_columns.capacity());
   std::vector<PetscInt> b_cols;
   std::vector<PetscScalar> b_values;
@@ -231,27 +257,37 @@ Mat build_distributed_augmented_matrix(Mat tangent, const fem::DofLayout& layout
     const PetscInt lo = std::lower_bound(c, c + m, first) - c, hi = std::lower_bound(c, c + m, first + n_owned) - c;
     b_cols.clear();
     for (PetscInt k = lo; k < hi; ++k) b_cols.push_back(c[k] - first);
-    const PetscInt* d_cols = ja[0] + ia[0][r];
-    append_union(ia[0][r + 1] - ia[0][r], [&](PetscInt k) { return d_cols[k]; }, va[0] + ia[0][r], hi - lo,
-                 b_cols.data(), v + lo, out.diagonal_columns, out.diagonal_values);
+    const PetscInt* d_cols = t.cols[0] + t.start[0][r];
+    append_union(t.start[0][r + 1] - t.start[0][r], [&](PetscInt k) { return d_cols[k]; }, t.values[0] + t.start[0][r],
+                 hi - lo, b_cols.data(), v + lo, out.diagonal_columns, out.diagonal_values);
     out.diagonal_start.push_back(static_cast<PetscInt>(out.diagonal_columns.size()));
     b_cols.assign(c, c + lo);
     b_cols.insert(b_cols.end(), c + hi, c + m);
     b_values.assign(v, v + lo);
     b_values.insert(b_values.end(), v + hi, v + m);
-    const PetscInt* o_cols = ja[1] + ia[1][r];
-    append_union(ia[1][r + 1] - ia[1][r], [&](PetscInt k) { return column_map[o_cols[k]]; }, va[1] + ia[1][r],
-                 static_cast<PetscInt>(b_cols.size()), b_cols.data(), b_values.data(), out.off_diagonal_columns,
-                 out.off_diagonal_values);
+    const PetscInt* o_cols = t.cols[1] + t.start[1][r];
+    append_union(t.start[1][r + 1] - t.start[1][r], [&](PetscInt k) { return t.column_map[o_cols[k]]; },
+                 t.values[1] + t.start[1][r], static_cast<PetscInt>(b_cols.size()), b_cols.data(), b_values.data(),
+                 out.off_diagonal_columns, out.off_diagonal_values);
     out.off_diagonal_start.push_back(static_cast<PetscInt>(out.off_diagonal_columns.size()));
   }
-  for (int k = 0; k < 2; ++k) {
-    PetscInt n;
-    PetscBool done;
-    STICTION_PETSC(MatSeqAIJRestoreArrayRead(parts[k], &va[k]));
-    STICTION_PETSC(MatRestoreRowIJ(parts[k], 0, PETSC_FALSE, PETSC_FALSE, &n, &ia[k], &ja[k], &done));
+  return out;
+}
+
+}  // namespace
+
+Mat build_distributed_augmented_matrix(Mat tangent, const fem::DofLayout& layout, PetscInt n_u,
+                                       const SparseEntries& extra, PetscInt block_size) {
+  const PetscInt first = layout.first_owned(), n_owned = layout.n_owned(), n_total = layout.n_total();
+  // Straight from and into the MPIAIJ split, without MatGetRow or MatSetValues: the new
+  // matrix is made over the merged arrays.
+  SplitCsrArrays merged;
+  {
+    const CompressedRows e = owned_constraint_rows(layout, n_u, extra);
+    const SplitRowsView t(tangent, n_owned);
+    merged = merge_split_rows(t, e, first, n_owned);
   }
-  Mat A = mpi_aij_over(layout.comm(), n_owned, n_total, std::move(out));
+  Mat A = mpi_aij_over(layout.comm(), n_owned, n_total, std::move(merged));
   if (block_size > 1 && n_owned % block_size == 0 && n_total % block_size == 0)
     STICTION_PETSC(MatSetBlockSize(A, block_size));
   return A;
