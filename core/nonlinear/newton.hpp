@@ -14,8 +14,9 @@
 // Convergence: ||r_free|| <= max(atol, rtol * r_ref), where r_ref is the larger of the
 // step's initial free residual and the right side of its first (lifted) system, i.e. the
 // size of the load increment. Every stop without convergence carries a named reason. A
-// Krylov solve that stops unconverged within ten times its tolerance still gives the update
-// (usable_direction); one farther off is a failed linear solve.
+// Krylov solve that stops unconverged within ten times its tolerance, or below what Newton's
+// own test asks, still gives the update (inexact_direction.hpp); otherwise it is a failed
+// linear solve.
 //
 // Contact (problem.constraints): the multipliers follow the displacement (and pressure)
 // unknowns, the system is the augmented (30), and a step converges only when, in addition,
@@ -198,8 +199,9 @@ private:
                             double c_reference, ActiveSetMonitor& monitor, Residuals& r);
   static bool retry_allowed(const StepResult& failed, bool linear_failure_retried, const LinearTally& tally);
   static constexpr double kSporadicLinearFailures = 0.02;  // retry_allowed
-  static constexpr double kUsableForcingFactor = 10;  // usable_direction
-  static bool usable_direction(const LinearSolveStats& s);
+  // Half the smallest of Newton's absolute tolerances on the free and constraint residuals
+  // (zero while a Dirichlet lifting is pending): a linear residual below it meets them all.
+  double terminal_linear_residual(double reference, double c_reference, bool pending) const;
   void report_state_changes(int step, int iteration, double t, const std::vector<char>& before) const;
   // Pieces of solve_increment: the split of a Newton update into u (and p) and multipliers,
   // the backtracked step (u_ and lambda_ move only when it succeeds), and the norm of the

@@ -139,7 +139,8 @@ bool expect_same_solution(const std::string& scene_name, const std::string& back
   //   * boomeramg, one V-cycle on the whole saddle-point system (zero diagonal on the
   //     multiplier rows), on most contact scenes;
   //   * ilu-gmres, ILU(0) in GMRES(100): out of iterations on the thin 3D tubes (step 1) and
-  //     on both ironing scenes at their Krylov tolerance 1e-6 (at the first contact).
+  //     on both ironing scenes at their Krylov tolerances (1e-6 with friction, 1e-8
+  //     without; at the first contact).
   // Backends made for one kind of system refuse the other kind at set-up and say why: gamg
   // every system with a multiplier block (a saddle point), fieldsplit-schur every system
   // without a block to split off (none of these scenes has a pressure field).
