@@ -96,6 +96,9 @@ struct KspSolver::StagnationTest {
   void* default_context = nullptr;
   PetscInt window = 500;
   PetscReal margin = 3;
+  // The residual the relative tolerance refers to: ||b||, which a continued solve (nonzero
+  // initial guess) passes here; 0: the first residual of the solve (a zero initial guess).
+  PetscReal reference = 0;
   std::vector<PetscReal> history;
   bool fired = false;
 
@@ -110,7 +113,7 @@ struct KspSolver::StagnationTest {
     PetscInt max_it;
     PetscCall(KSPGetTolerances(ksp, &rtol, &abstol, &dtol, &max_it));
     const PetscReal before = self->history[it - self->window];
-    const PetscReal target = std::max(rtol * self->history.front(), abstol);
+    const PetscReal target = std::max(rtol * (self->reference > 0 ? self->reference : self->history.front()), abstol);
     // Iterations still needed at the window's mean rate (infinite without progress).
     const double needed = rnorm < before ? std::log(target / rnorm) / (std::log(rnorm / before) / self->window)
                                          : std::numeric_limits<double>::infinity();
@@ -245,6 +248,56 @@ void KspSolver::install_stagnation_test() {
   STICTION_PETSC(KSPConvergedDefaultCreate(&test->default_context));
   STICTION_PETSC(KSPSetConvergenceTest(ksp_, StagnationTest::test, test.get(), StagnationTest::destroy));
   stagnation_ = test.release();
+}
+
+PetscInt KspSolver::continuation_restart(PetscInt m, PetscInt n_local) const {
+  const std::string prefix = options_prefix(name_);
+  PetscReal factor = 3, budget_mb = 1024;
+  STICTION_PETSC(PetscOptionsGetReal(nullptr, prefix.c_str(), "-ksp_stagnation_restart_factor", &factor, nullptr));
+  STICTION_PETSC(PetscOptionsGetReal(nullptr, prefix.c_str(), "-ksp_stagnation_restart_mb", &budget_mb, nullptr));
+  if (!(factor > 1) || n_local <= 0) return m;
+  // GMRES holds restart + 1 basis vectors and a few work vectors (VEC_OFFSET in PETSc's gmres).
+  constexpr PetscInt kWorkVectors = 3;
+  const double fits = budget_mb * 1024 * 1024 / (8.0 * static_cast<double>(n_local)) - 1 - kWorkVectors;
+  const double longer = std::min(std::floor(factor * static_cast<double>(m)), fits);
+  return longer > static_cast<double>(m) ? static_cast<PetscInt>(longer) : m;
+}
+
+bool KspSolver::continue_longer(const nonlinear::NewtonSystem& system, Vec x, nonlinear::LinearSolveStats& s) {
+  KSPType type;
+  STICTION_PETSC(KSPGetType(ksp_, &type));
+  if (!setup_failure_.empty() || !stagnation_ || !stagnation_->fired || !type ||
+      (std::string(type) != KSPGMRES && std::string(type) != KSPFGMRES))
+    return false;
+  PetscInt m, n_local;
+  STICTION_PETSC(KSPGMRESGetRestart(ksp_, &m));
+  STICTION_PETSC(VecGetLocalSize(system.rhs, &n_local));
+  // Every process must take the same branch: the smallest budget decides.
+  PetscInt longer = continuation_restart(m, n_local);
+  MPI_Allreduce(MPI_IN_PLACE, &longer, 1, MPIU_INT, MPI_MIN, comm_);
+  if (longer <= m) return false;
+  STICTION_PETSC(KSPGMRESSetRestart(ksp_, longer));
+  STICTION_PETSC(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE));
+  stagnation_->reference = s.initial_residual;
+  nonlinear::LinearSolveStats more;
+  try {
+    more = solve(system, x);
+  } catch (...) {
+    stagnation_->reference = 0;
+    KSPSetInitialGuessNonzero(ksp_, PETSC_FALSE);
+    KSPGMRESSetRestart(ksp_, m);
+    throw;
+  }
+  stagnation_->reference = 0;
+  STICTION_PETSC(KSPSetInitialGuessNonzero(ksp_, PETSC_FALSE));
+  STICTION_PETSC(KSPGMRESSetRestart(ksp_, m));
+  more.extra["krylov_iterations_before_continuing"] = s.iterations;
+  more.extra["krylov_continued_restart"] = static_cast<double>(longer);
+  more.iterations += s.iterations;
+  more.solve_seconds += s.solve_seconds;
+  more.initial_residual = s.initial_residual;
+  s = std::move(more);
+  return true;
 }
 
 void KspSolver::release() {

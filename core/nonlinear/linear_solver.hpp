@@ -35,6 +35,11 @@ public:
   // reference to its matrix. The driver calls it before it assembles a system on a new
   // matrix (contact), so the old set-up is not held while the new system is built.
   virtual void release() {}
+  // After a solve into x that stopped unconverged: continue it from x with more memory
+  // (a longer Krylov basis) and update s to describe the whole solve. False, s and x
+  // untouched, when the backend has nothing more to try. The Newton driver calls it only
+  // for a solve it could not use as an update.
+  virtual bool continue_longer(const NewtonSystem& system, Vec x, LinearSolveStats& s) { return false; }
   // Relative tolerance of the next solve: the inexact-Newton forcing term. Iterative
   // backends apply it after set-up (it overrides their -ksp_rtol); direct ones ignore it.
   virtual void set_relative_tolerance(double rtol) {}

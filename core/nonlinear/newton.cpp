@@ -353,11 +353,17 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
       linear_.set_relative_tolerance(settings_.krylov_rtol);
     }
     rec.linear = linear_.solve(builder_.system(), du);
+    // A solve that gives no update is continued once with more memory where the backend
+    // can (a longer GMRES cycle), before the increment is given up.
+    const double terminal = terminal_linear_residual(res.reference_residual, c_reference, pending);
+    if (!rec.linear.converged && !usable_direction(rec.linear, terminal))
+      linear_.continue_longer(builder_.system(), du, rec.linear);
     if (observer_) observer_(builder_.system(), du, rec.linear, step, it + 1);
-    if (!rec.linear.converged &&
-        !usable_direction(rec.linear, terminal_linear_residual(res.reference_residual, c_reference, pending))) {
+    if (!rec.linear.converged && !usable_direction(rec.linear, terminal)) {
       res.iterations.push_back(rec);
       res.detail = fmt::format("linear solver {} stopped with {}", linear_.name(), rec.linear.reason);
+      if (const auto k = rec.linear.extra.find("krylov_continued_restart"); k != rec.linear.extra.end())
+        res.detail += fmt::format(" (also when continued with a restart of {:g})", k->second);
       return finish(NewtonReason::DivergedLinearSolver);
     }
     std::vector<double> dv(n_u), dl(lambda_.size());

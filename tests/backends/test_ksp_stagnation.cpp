@@ -1,6 +1,7 @@
 // The Krylov diagnostics of every GMRES backend (solvers/ksp_solver.hpp): the stagnation
 // test (a hopeless solve stops after one window as DIVERGED_STAGNATION, a slow but steady
-// one is left alone) and the conditioning estimate from GMRES's Hessenberg matrix.
+// one is left alone), continuing a stagnated solve with a longer restart, and the
+// conditioning estimate from GMRES's Hessenberg matrix.
 #include <gtest/gtest.h>
 
 #include <petscksp.h>
@@ -86,6 +87,53 @@ TEST(KrylovStagnation, ASlowSteadySolveIsLeftAlone) {
   EXPECT_GT(unguarded.iterations, 500) << "longer than one window, or the test shows nothing";
   EXPECT_TRUE(guarded.converged) << guarded.reason;
   EXPECT_EQ(guarded.iterations, unguarded.iterations);
+}
+
+// ilu-gmres, unpreconditioned, on the cyclic shift of size n: solve (stagnates after a
+// window), then continue_longer under the given options; true when it continued.
+bool stagnate_then_continue(PetscInt n, const std::string& options, LinearSolveStats& stats) {
+  const NewtonSystem shift = cyclic_shift(n);
+  STICTION_PETSC(PetscOptionsInsertString(nullptr, ("-ilu_gmres_pc_type none " + options).c_str()));
+  auto solver = stiction::solvers::create_solver("ilu-gmres", PETSC_COMM_WORLD);
+  solver->setup(shift);
+  stiction::PetscVec x;
+  STICTION_PETSC(VecDuplicate(shift.rhs, x.out()));
+  stats = solver->solve(shift, x);
+  EXPECT_EQ(stats.reason, "DIVERGED_STAGNATION") << "the first solve must stagnate, or the test shows nothing";
+  const bool continued = solver->continue_longer(shift, x, stats);
+  for (const char* key : {"-ilu_gmres_pc_type", "-ilu_gmres_ksp_stagnation_restart_factor", "-ilu_gmres_ksp_stagnation_restart_mb"})
+    STICTION_PETSC(PetscOptionsClearValue(nullptr, key));
+  return continued;
+}
+
+TEST(KrylovStagnation, AStagnatedSolveIsContinuedWithALongerRestart) {
+  // GMRES(100) makes no progress on the shift of size 250; GMRES(300) (the default factor
+  // 3) solves it in exactly 250 iterations from the stagnated iterate (zero).
+  LinearSolveStats s;
+  ASSERT_TRUE(stagnate_then_continue(250, "", s));
+  EXPECT_TRUE(s.converged) << s.reason;
+  EXPECT_EQ(s.extra.at("krylov_continued_restart"), 300);
+  EXPECT_EQ(s.extra.at("krylov_iterations_before_continuing"), 500);
+  EXPECT_EQ(s.iterations, 500 + 250);
+  EXPECT_EQ(s.initial_residual, 1.0) << "||b||, not the residual the continued solve started from";
+  EXPECT_LE(s.final_residual, s.extra.at("ksp_rtol") * s.initial_residual);
+}
+
+TEST(KrylovStagnation, ContinuingIsHeldToItsMemoryBudgetAndCanBeSwitchedOff) {
+  LinearSolveStats off;
+  EXPECT_FALSE(stagnate_then_continue(250, "-ilu_gmres_ksp_stagnation_restart_factor 1", off));
+  EXPECT_EQ(off.reason, "DIVERGED_STAGNATION");
+  EXPECT_EQ(off.iterations, 500) << "untouched";
+  // 0.3 MB for vectors of 250 doubles: 157 vectors, less 1 + 3 of GMRES's own: GMRES(153),
+  // too short for the shift, which stagnates again.
+  LinearSolveStats held;
+  ASSERT_TRUE(stagnate_then_continue(250, "-ilu_gmres_ksp_stagnation_restart_mb 0.3", held));
+  EXPECT_EQ(held.extra.at("krylov_continued_restart"), 153);
+  EXPECT_FALSE(held.converged);
+  EXPECT_EQ(held.reason, "DIVERGED_STAGNATION");
+  // No room for a basis longer than the first one: nothing to try.
+  LinearSolveStats none;
+  EXPECT_FALSE(stagnate_then_continue(250, "-ilu_gmres_ksp_stagnation_restart_mb 0.1", none));
 }
 
 // The 1D Laplacian tridiag(-1, 2, -1) of size n, symmetric positive definite, has the
