@@ -276,21 +276,21 @@ bool KspSolver::continue_longer(const nonlinear::NewtonSystem& system, Vec x, no
   PetscInt longer = continuation_restart(m, n_local);
   MPI_Allreduce(MPI_IN_PLACE, &longer, 1, MPIU_INT, MPI_MIN, comm_);
   if (longer <= m) return false;
+  // The longer cycle from x, measured against ||b||; the settings are put back on the way out.
+  struct Settings {
+    KSP ksp;
+    StagnationTest* test;
+    PetscInt restart;
+    ~Settings() {
+      test->reference = 0;
+      KSPSetInitialGuessNonzero(ksp, PETSC_FALSE);
+      KSPGMRESSetRestart(ksp, restart);
+    }
+  } restore{ksp_, stagnation_, m};
   STICTION_PETSC(KSPGMRESSetRestart(ksp_, longer));
   STICTION_PETSC(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE));
   stagnation_->reference = s.initial_residual;
-  nonlinear::LinearSolveStats more;
-  try {
-    more = solve(system, x);
-  } catch (...) {
-    stagnation_->reference = 0;
-    KSPSetInitialGuessNonzero(ksp_, PETSC_FALSE);
-    KSPGMRESSetRestart(ksp_, m);
-    throw;
-  }
-  stagnation_->reference = 0;
-  STICTION_PETSC(KSPSetInitialGuessNonzero(ksp_, PETSC_FALSE));
-  STICTION_PETSC(KSPGMRESSetRestart(ksp_, m));
+  nonlinear::LinearSolveStats more = solve(system, x);
   more.extra["krylov_iterations_before_continuing"] = s.iterations;
   more.extra["krylov_continued_restart"] = static_cast<double>(longer);
   more.iterations += s.iterations;
