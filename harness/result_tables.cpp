@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "common/error.hpp"
 #include "contact/contact_state.hpp"
 
@@ -55,7 +57,9 @@ StepTable::StepTable(const std::string& path, const std::string& header_comment,
     out_ << fmt::format(",contact_{0}_inactive,contact_{0}_stick,contact_{0}_slip", c->name());
   }
   if (!s.problem.constraints.empty()) out_ << ",state_changes";
-  out_ << "\n";
+  // The smallest det F of the converged state (empty without finite-strain cells): how
+  // close a cell came to folding.
+  out_ << ",min_det_f\n";
   out_.flush();
 }
 
@@ -96,7 +100,7 @@ void StepTable::add(const nonlinear::StepResult& r, const scene::Scene& s) {
     for (const auto& it : r.iterations) changes += it.state_changes;
     out_ << fmt::format(",{}", changes);
   }
-  out_ << "\n";
+  out_ << (std::isfinite(r.min_det_f) ? fmt::format(",{:.6e}\n", r.min_det_f) : std::string(",\n"));
   out_.flush();
 }
 

@@ -140,15 +140,15 @@ InternalForceStatus internal_kernel(const FieldSpace& space, const std::vector<c
     // points) and then stalled, the contact projections on the looped master facet jumping.
     // det F at the nodes too (necessary for a valid cell, not sufficient: a bound over the
     // whole cell needs Bernstein coefficients of det F, Johnen, Remacle & Geuzaine 2013).
-    if (NB > D + 1 && mat[c]->requires_positive_jacobian() && status.folded_cell < 0)
+    const bool finite_strain = mat[c]->requires_positive_jacobian();
+    if (NB > D + 1 && finite_strain)
       for (int k = 0; k < NB; ++k) {
         const double* dN_k = &node_gradients[static_cast<size_t>(k) * NB * D];
         if (curved) geo = map_of_cell<D, NB>(space, c, nodes, dN_k);
         physical_gradients<D, NB>(dN_k, geo.inv, G);
-        if (!(deformation_gradient<D, NB>(ue, G).determinant() > 0)) {
-          status.folded_cell = c;
-          break;
-        }
+        const double det_node = deformation_gradient<D, NB>(ue, G).determinant();
+        status.min_det_f = std::min(status.min_det_f, det_node);
+        if (!(det_node > 0) && status.folded_cell < 0) status.folded_cell = c;
       }
     if (tangent) std::fill(Ke.begin(), Ke.begin() + m * m, 0.0);
     std::fill(re, re + m, 0.0);
@@ -158,7 +158,8 @@ InternalForceStatus internal_kernel(const FieldSpace& space, const std::vector<c
       physical_gradients<D, NB>(dN_q, geo.inv, G);
       const Mat3 F = deformation_gradient<D, NB>(ue, G);
       const double detF = F.determinant();
-      if (!(detF > 0) && mat[c]->requires_positive_jacobian()) {
+      if (finite_strain) status.min_det_f = std::min(status.min_det_f, detF);
+      if (!(detF > 0) && finite_strain) {
         if (status.inverted_cell < 0) status.inverted_cell = c;
         continue;
       }

@@ -5,6 +5,7 @@
 // The internal part loops over cells with a kernel specialised for the dimension and the
 // number of shape functions; loads are dead loads on the reference configuration.
 #include <array>
+#include <limits>
 #include <vector>
 
 #include "fem/dof_layout.hpp"
@@ -20,6 +21,10 @@ struct InternalForceStatus {
   // nodes (its boundary curves back on itself), or -1: the energy is defined, the
   // configuration is not a valid one.
   int folded_cell = -1;
+  // Smallest det F at the quadrature points and (quadratic cells) the nodes of the cells whose
+  // law needs det F > 0; +inf without such cells. How close a state is to folding: a cell
+  // crushed at the edge of a contact zone shows here long before it folds.
+  double min_det_f = std::numeric_limits<double>::infinity();
 };
 
 // Adds the internal force vector (residual may be null) and the tangent (tangent may be

@@ -107,6 +107,7 @@ fem::InternalForceStatus QuasiStaticSolver::residual(double t, const std::vector
   fem::sum_over_ranks(layout_.comm(), r);
   status.inverted_cell = fem::first_cell_over_ranks(layout_.comm(), status.inverted_cell);
   status.folded_cell = fem::first_cell_over_ranks(layout_.comm(), status.folded_cell);
+  MPI_Allreduce(MPI_IN_PLACE, &status.min_det_f, 1, MPI_DOUBLE, MPI_MIN, layout_.comm());
   return add_loads(t, r, status);
 }
 
@@ -175,6 +176,7 @@ QuasiStaticSolver::TrialStep QuasiStaticSolver::take_step(double t_target, const
     t.assembly_seconds += seconds_since(t0);
     const double norm = std::hypot(lifting_.free_norm(rt.u), l2_norm(rt.c));
     t.folded_cell = st.folded_cell;
+    t.min_det_f = st.min_det_f;
     if (st.inverted_cell < 0 && std::isfinite(norm)) break;
     if (bt == settings_.max_backtracks) {
       t.inverted_cell = st.inverted_cell;
@@ -278,6 +280,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
   // the increment fails and is cut (before, such a state was converged to at t = 1.49, and
   // Newton stalled in the next step on the contact projections of the looped facet).
   int folded_cell = -1;
+  double min_det_f = st0.min_det_f;
   double rnorm = lifting_.free_norm(r.u), cnorm = l2_norm(r.c), c_reference = cnorm;
   res.initial_residual = res.reference_residual = res.final_residual = rnorm;
   auto finish = [&](NewtonReason why) {
@@ -285,6 +288,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
     res.final_residual = rnorm;
     if (res.converged()) {
       res.reactions = lifting_.reactions(r.u);
+      res.min_det_f = min_det_f;
       res.surface_forces = surface_forces();
       res.contact = constraints_.summaries(lambda_);
     }
@@ -380,6 +384,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
     }
     const double alpha = trial.alpha;
     folded_cell = trial.folded_cell;
+    min_det_f = trial.min_det_f;
     r = std::move(rt);
     ActiveSetMonitor::Verdict verdict = ActiveSetMonitor::Verdict::Continue;
     if (!lambda_.empty()) {

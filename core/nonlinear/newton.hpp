@@ -33,6 +33,7 @@
 #include <array>
 #include <chrono>
 #include <functional>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -113,6 +114,9 @@ struct StepResult {
   // Integral of the traction P N over each Dirichlet boundary (by its name: the paper's F1)
   // and each contact surface ("<pair>/slave": F4, "<pair>/master": -F5), when converged.
   std::map<std::string, std::array<double, 3>> surface_forces;
+  // Smallest det F of the converged state (fem::InternalForceStatus::min_det_f; +inf with
+  // no finite-strain cell), when converged.
+  double min_det_f = std::numeric_limits<double>::quiet_NaN();
   double wall_seconds = 0;
   std::string detail;  // human-readable context for a failure
   bool converged() const { return nonlinear::converged(reason); }
@@ -211,6 +215,7 @@ private:
     double assembly_seconds = 0;
     int inverted_cell = -1;
     int folded_cell = -1;  // of the accepted trial state (fem::InternalForceStatus)
+    double min_det_f = 0;  // of the accepted trial state
     bool failed = false;
     NewtonReason failure = NewtonReason::DivergedNaN;  // when failed
   };

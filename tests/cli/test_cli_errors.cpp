@@ -245,7 +245,7 @@ TEST_F(StictionCli, RestartContinuesFromTheLastCompletedStep) {
   ASSERT_EQ(parts.size(), 4u);
   ASSERT_EQ(straight.size(), 4u);
   EXPECT_EQ(parts.back().at("step"), "4");
-  for (const char* column : {"reaction_beam/xmin_x", "reaction_beam/xmin_y"}) {
+  for (const char* column : {"reaction_beam/xmin_x", "reaction_beam/xmin_y", "min_det_f"}) {
     const double a = std::stod(parts.back().at(column)), b = std::stod(straight.back().at(column));
     EXPECT_NEAR(a, b, 1e-8 * std::abs(b)) << column;
   }

@@ -146,10 +146,18 @@ TEST(Assembly, ReportsAQuadraticCellFoldedBetweenItsQuadraturePoints) {
   const fem::InternalForceStatus folded = fem::assemble_internal(space, mats, u, &r, nullptr);
   EXPECT_EQ(folded.folded_cell, 0);
   EXPECT_LT(folded.inverted_cell, 0);
+  // det F = 1 + 4 c (1 - 2x - y) for the edge coefficient c: smallest at vertex 0.
+  EXPECT_NEAR(folded.min_det_f, -0.6, 1e-12);
   u[static_cast<size_t>(edge01) * 2] = -0.2;
   const fem::InternalForceStatus valid = fem::assemble_internal(space, mats, u, &r, nullptr);
   EXPECT_LT(valid.folded_cell, 0);
   EXPECT_LT(valid.inverted_cell, 0);
+  EXPECT_NEAR(valid.min_det_f, 0.2, 1e-12);
+  // A law that does not need det F > 0 takes no part.
+  materials::LinearElastic linear(10.0, 0.3);
+  const std::vector<const materials::Material*> linear_mats{&linear};
+  EXPECT_EQ(fem::assemble_internal(space, linear_mats, u, &r, nullptr).min_det_f,
+            std::numeric_limits<double>::infinity());
 }
 
 // The same triangle with every node prescribed, u = t (-1.6 x (1 - x - y), 0): its edge
@@ -177,6 +185,7 @@ TEST(Newton, NeverAcceptsAFoldedCell) {
   ASSERT_GE(attempts.size(), 2u);
   EXPECT_TRUE(attempts.front().converged());  // t = 0.5
   EXPECT_EQ(attempts.front().time, 0.5);
+  EXPECT_NEAR(attempts.front().min_det_f, 1 - 1.6 * 0.5, 1e-12);  // at vertex 0
   EXPECT_EQ(attempts.back().reason, NewtonReason::DivergedInvertedElement);
   // The message names the cell and where it is (its vertex centroid, reference configuration).
   EXPECT_NE(attempts.back().detail.find("cell 0 (vertex centroid (0.3333, 0.3333)) is folded"), std::string::npos)
@@ -262,6 +271,7 @@ TEST_P(HomogeneousStretch, ExactToRoundOff) {
   const auto& reactions = results.back().reactions;
   EXPECT_NEAR(reactions.at("xmax")[0], s.p11 * area, 1e-8 * s.p11 * area);
   EXPECT_NEAR(reactions.at("min0")[0], -s.p11 * area, 1e-8 * s.p11 * area);
+  EXPECT_NEAR(results.back().min_det_f, s.stretch * std::pow(s.lateral, dim - 1), 1e-10);
   // Newton converges quadratically: few iterations per step.
   for (const auto& r : results) EXPECT_LE(r.iterations.size(), 6u);
 }
