@@ -147,7 +147,7 @@ InternalForceStatus internal_kernel(const FieldSpace& space, const std::vector<c
         if (curved) geo = map_of_cell<D, NB>(space, c, nodes, dN_k);
         physical_gradients<D, NB>(dN_k, geo.inv, G);
         const double det_node = deformation_gradient<D, NB>(ue, G).determinant();
-        status.min_det_f = std::min(status.min_det_f, det_node);
+        if (det_node < status.min_det_f) status.min_det_f = det_node, status.min_det_f_cell = c;
         if (!(det_node > 0) && status.folded_cell < 0) status.folded_cell = c;
       }
     if (tangent) std::fill(Ke.begin(), Ke.begin() + m * m, 0.0);
@@ -158,7 +158,7 @@ InternalForceStatus internal_kernel(const FieldSpace& space, const std::vector<c
       physical_gradients<D, NB>(dN_q, geo.inv, G);
       const Mat3 F = deformation_gradient<D, NB>(ue, G);
       const double detF = F.determinant();
-      if (finite_strain) status.min_det_f = std::min(status.min_det_f, detF);
+      if (finite_strain && detF < status.min_det_f) status.min_det_f = detF, status.min_det_f_cell = c;
       if (!(detF > 0) && finite_strain) {
         if (status.inverted_cell < 0) status.inverted_cell = c;
         continue;

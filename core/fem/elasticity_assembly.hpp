@@ -25,6 +25,7 @@ struct InternalForceStatus {
   // law needs det F > 0; +inf without such cells. How close a state is to folding: a cell
   // crushed at the edge of a contact zone shows here long before it folds.
   double min_det_f = std::numeric_limits<double>::infinity();
+  int min_det_f_cell = -1;  // where it is
 };
 
 // Adds the internal force vector (residual may be null) and the tangent (tangent may be

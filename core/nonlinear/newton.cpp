@@ -107,7 +107,12 @@ fem::InternalForceStatus QuasiStaticSolver::residual(double t, const std::vector
   fem::sum_over_ranks(layout_.comm(), r);
   status.inverted_cell = fem::first_cell_over_ranks(layout_.comm(), status.inverted_cell);
   status.folded_cell = fem::first_cell_over_ranks(layout_.comm(), status.folded_cell);
-  MPI_Allreduce(MPI_IN_PLACE, &status.min_det_f, 1, MPI_DOUBLE, MPI_MIN, layout_.comm());
+  struct {
+    double value;
+    int cell;
+  } smallest{status.min_det_f, status.min_det_f_cell};
+  MPI_Allreduce(MPI_IN_PLACE, &smallest, 1, MPI_DOUBLE_INT, MPI_MINLOC, layout_.comm());
+  status.min_det_f = smallest.value, status.min_det_f_cell = smallest.cell;
   return add_loads(t, r, status);
 }
 
@@ -177,6 +182,7 @@ QuasiStaticSolver::TrialStep QuasiStaticSolver::take_step(double t_target, const
     const double norm = std::hypot(lifting_.free_norm(rt.u), l2_norm(rt.c));
     t.folded_cell = st.folded_cell;
     t.min_det_f = st.min_det_f;
+    t.min_det_f_cell = st.min_det_f_cell;
     if (st.inverted_cell < 0 && std::isfinite(norm)) break;
     if (bt == settings_.max_backtracks) {
       t.inverted_cell = st.inverted_cell;
@@ -280,7 +286,9 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
   // the increment fails and is cut (before, such a state was converged to at t = 1.49, and
   // Newton stalled in the next step on the contact projections of the looped facet).
   int folded_cell = -1;
+  const double start_min_det_f = st0.min_det_f;
   double min_det_f = st0.min_det_f;
+  int min_det_f_cell = st0.min_det_f_cell;
   double rnorm = lifting_.free_norm(r.u), cnorm = l2_norm(r.c), c_reference = cnorm;
   res.initial_residual = res.reference_residual = res.final_residual = rnorm;
   auto finish = [&](NewtonReason why) {
@@ -319,6 +327,11 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
       if (folded_cell >= 0) {
         res.detail = fmt::format("the residual converged at a state where {} is folded (det F <= 0 at one of "
                                  "its nodes)", describe_cell(folded_cell));
+        return finish(NewtonReason::DivergedInvertedElement);
+      }
+      if (min_det_f < settings_.min_det_f_ratio * start_min_det_f) {
+        res.detail = fmt::format("the smallest det F fell from {:.3g} to {:.3g} in one increment, in {}",
+                                 start_min_det_f, min_det_f, describe_cell(min_det_f_cell));
         return finish(NewtonReason::DivergedInvertedElement);
       }
       return finish(rnorm <= settings_.atol ? NewtonReason::ConvergedAbsolute : NewtonReason::ConvergedRelative);
@@ -385,6 +398,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
     const double alpha = trial.alpha;
     folded_cell = trial.folded_cell;
     min_det_f = trial.min_det_f;
+    min_det_f_cell = trial.min_det_f_cell;
     r = std::move(rt);
     ActiveSetMonitor::Verdict verdict = ActiveSetMonitor::Verdict::Continue;
     if (!lambda_.empty()) {

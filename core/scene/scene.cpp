@@ -155,6 +155,9 @@ struct Schemas {
                {"max_iterations", VT::Integer, "Newton iterations per load step", false, std::int64_t{25}},
                {"max_backtracks", VT::Integer, "step halvings when a trial state inverts a cell", false,
                 std::int64_t{10}},
+               {"min_det_f_ratio", VT::Float,
+                "an increment whose smallest det F falls below this fraction of its start's is cut (0: never)", false,
+                0.5},
                {"forcing", VT::String, "Krylov tolerance per Newton step (inexact Newton)", false, std::string("fixed"),
                 {"fixed", "eisenstat-walker"}},
                {"krylov_rtol", VT::Float,
@@ -700,6 +703,7 @@ std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& o
   s.newton.rtol = get_float(nw, S.newton, "rtol");
   s.newton.max_iterations = static_cast<int>(get_int(nw, S.newton, "max_iterations"));
   s.newton.max_backtracks = static_cast<int>(get_int(nw, S.newton, "max_backtracks"));
+  s.newton.min_det_f_ratio = get_float(nw, S.newton, "min_det_f_ratio");
   s.newton.forcing = nonlinear::forcing_from_string(get_string(nw, S.newton, "forcing"));
   s.newton.krylov_rtol = get_float(nw, S.newton, "krylov_rtol");
   auto& as = s.newton.active_set;
@@ -710,8 +714,10 @@ std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& o
   s.newton.max_cuts = static_cast<int>(get_int(sub(root, "load"), S.load, "max_cuts"));
   if (const auto quick = sub(root, "load")["quick_until"].value<double>()) s.quick_until = *quick;
   if (!(s.newton.atol >= 0 && s.newton.rtol >= 0 && s.newton.max_iterations >= 1 && s.newton.krylov_rtol >= 0 &&
-        s.newton.krylov_rtol < 1))
-    throw Error(fmt::format("{}: newton tolerances must be >= 0 (krylov_rtol below 1) and max_iterations >= 1", origin));
+        s.newton.krylov_rtol < 1 && s.newton.min_det_f_ratio >= 0 && s.newton.min_det_f_ratio < 1))
+    throw Error(fmt::format("{}: newton tolerances must be >= 0 (krylov_rtol and min_det_f_ratio below 1) and "
+                            "max_iterations >= 1",
+                            origin));
   if (!(as.update_tolerance >= 0 && as.max_held >= 0 && as.cycle_remedies >= 0 && as.remedy_factor > 0 &&
         as.remedy_factor < 1 && s.newton.max_cuts >= 0))
     throw Error(fmt::format("{}: newton.state_update_tolerance, max_held_iterations, cycle_remedies and load.max_cuts "

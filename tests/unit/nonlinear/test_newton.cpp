@@ -161,25 +161,34 @@ TEST(Assembly, ReportsAQuadraticCellFoldedBetweenItsQuadraturePoints) {
 }
 
 // The same triangle with every node prescribed, u = t (-1.6 x (1 - x - y), 0): its edge
-// coefficients are t (-0.4, 0) on the bottom edge and zero elsewhere, so the cell folds past
-// t = 0.625 (det F = 1 - 1.6 t at vertex 0) while every residual row is prescribed and
-// satisfied. Newton may not accept the folded state: the step to t = 1 fails, named (the
-// cell and where it is), after its cut-backs, and the valid state at t = 0.5 converges.
-TEST(Newton, NeverAcceptsAFoldedCell) {
-  const mesh::Mesh m = reference_triangle();
-  const fem::FieldSpace space(m, BasisKind::P2Hierarchical);
-  materials::NeoHookean law(10.0, 0.3);
+// coefficients are t (-0.4, 0) on the bottom edge and zero elsewhere, so det F = 1 - 1.6 t
+// at vertex 0 (its smallest) and the cell folds past t = 0.625 while every residual row is
+// prescribed and satisfied.
+ElasticityProblem folding_triangle(const fem::FieldSpace& space, const materials::Material& law,
+                                   std::vector<double> step_times) {
   ElasticityProblem p;
   p.space = &space;
   p.cell_material = {&law};
-  p.step_times = {0.0, 0.5, 1.0};
+  p.step_times = std::move(step_times);
   p.dirichlet.push_back({"all", 1, {0, 1}, [](const double* X, double t, double* u) {
                            u[0] = -1.6 * t * X[0] * (1 - X[0] - X[1]);
                            u[1] = 0;
                          }});
+  return p;
+}
+
+// Newton may not accept the folded state: the step to t = 1 fails, named (the cell and
+// where it is), after its cut-backs, and the valid state at t = 0.5 converges.
+TEST(Newton, NeverAcceptsAFoldedCell) {
+  const mesh::Mesh m = reference_triangle();
+  const fem::FieldSpace space(m, BasisKind::P2Hierarchical);
+  materials::NeoHookean law(10.0, 0.3);
+  const ElasticityProblem p = folding_triangle(space, law, {0.0, 0.5, 1.0});
   // UMFPACK: MUMPS's PORD ordering aborts the process on a 12-unknown system.
   auto solver = solvers::create_solver("lu-umfpack", PETSC_COMM_WORLD);
-  QuasiStaticSolver newton(PETSC_COMM_WORLD, p, NewtonSettings{}, *solver);
+  NewtonSettings settings;
+  settings.min_det_f_ratio = 0;  // the fold alone (the next test: how far det F may fall)
+  QuasiStaticSolver newton(PETSC_COMM_WORLD, p, settings, *solver);
   std::vector<StepResult> attempts;
   newton.run([&](const StepResult& r) { attempts.push_back(r); });
   ASSERT_GE(attempts.size(), 2u);
@@ -195,6 +204,41 @@ TEST(Newton, NeverAcceptsAFoldedCell) {
       EXPECT_LE(a.time, 0.625) << "a folded state was accepted";
     }
   }
+}
+
+// The same prescribed path to t = 0.5 in one step: det F at vertex 0 falls from 1 to 0.2,
+// below 0.45 of its start, so the increment is cut; the halves fall 1 -> 0.6 (kept) and
+// 0.6 -> 0.2 (cut again), the quarters 0.6 -> 0.4 -> 0.2 (kept). With the ratio 0 the whole
+// step is taken.
+TEST(Newton, CutsAnIncrementThatCrushesACell) {
+  const mesh::Mesh m = reference_triangle();
+  const fem::FieldSpace space(m, BasisKind::P2Hierarchical);
+  materials::NeoHookean law(10.0, 0.3);
+  const ElasticityProblem p = folding_triangle(space, law, {0.0, 0.5});
+  auto solver = solvers::create_solver("lu-umfpack", PETSC_COMM_WORLD);
+  auto attempts_with = [&](double ratio) {
+    NewtonSettings settings;
+    settings.min_det_f_ratio = ratio;
+    QuasiStaticSolver newton(PETSC_COMM_WORLD, p, settings, *solver);
+    std::vector<StepResult> attempts;
+    newton.run([&](const StepResult& r) { attempts.push_back(r); });
+    return attempts;
+  };
+  const auto cut = attempts_with(0.45);
+  std::vector<std::pair<double, bool>> path;
+  for (const auto& a : cut) path.emplace_back(a.time, a.converged());
+  const std::vector<std::pair<double, bool>> expected{
+      {0.5, false}, {0.25, true}, {0.5, false}, {0.375, true}, {0.5, true}};
+  EXPECT_EQ(path, expected);
+  ASSERT_FALSE(cut.empty());
+  EXPECT_EQ(cut.front().reason, NewtonReason::DivergedInvertedElement);
+  EXPECT_NE(cut.front().detail.find("the smallest det F fell from 1 to 0.2 in one increment, in cell 0"),
+            std::string::npos)
+      << cut.front().detail;
+  EXPECT_NEAR(cut.back().min_det_f, 0.2, 1e-12);
+  const auto whole = attempts_with(0);
+  ASSERT_EQ(whole.size(), 1u);
+  EXPECT_TRUE(whole.front().converged());
 }
 
 // Uniaxial stretch with rollers: the exact solution is homogeneous, F = diag(1+d, s, s)
