@@ -180,12 +180,9 @@ QuasiStaticSolver::TrialStep QuasiStaticSolver::take_step(double t_target, const
     const auto st = evaluate(t_target, trial, trial_lambda, rt);
     t.assembly_seconds += seconds_since(t0);
     const double norm = std::hypot(lifting_.free_norm(rt.u), l2_norm(rt.c));
-    t.folded_cell = st.folded_cell;
-    t.min_det_f = st.min_det_f;
-    t.min_det_f_cell = st.min_det_f_cell;
+    t.status = st;
     if (st.inverted_cell < 0 && std::isfinite(norm)) break;
     if (bt == settings_.max_backtracks) {
-      t.inverted_cell = st.inverted_cell;
       t.failed = true;
       t.failure = st.inverted_cell < 0 ? NewtonReason::DivergedNaN : NewtonReason::DivergedInvertedElement;
       return t;
@@ -285,10 +282,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
   // state had det F >= 0.58 at every node), but a state that holds one is never accepted:
   // the increment fails and is cut (before, such a state was converged to at t = 1.49, and
   // Newton stalled in the next step on the contact projections of the looped facet).
-  int folded_cell = -1;
-  const double start_min_det_f = st0.min_det_f;
-  double min_det_f = st0.min_det_f;
-  int min_det_f_cell = st0.min_det_f_cell;
+  fem::InternalForceStatus accepted = st0;  // of the current iterate
   double rnorm = lifting_.free_norm(r.u), cnorm = l2_norm(r.c), c_reference = cnorm;
   res.initial_residual = res.reference_residual = res.final_residual = rnorm;
   auto finish = [&](NewtonReason why) {
@@ -296,7 +290,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
     res.final_residual = rnorm;
     if (res.converged()) {
       res.reactions = lifting_.reactions(r.u);
-      res.min_det_f = min_det_f;
+      res.min_det_f = accepted.min_det_f;
       res.surface_forces = surface_forces();
       res.contact = constraints_.summaries(lambda_);
     }
@@ -324,14 +318,14 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
     const bool constraints_ok =
         states_checked && last_changes == 0 && cnorm <= std::max(settings_.atol, settings_.rtol * c_reference);
     if (!pending && (it > 0 || rnorm <= settings_.atol) && constraints_ok && rnorm <= tol) {
-      if (folded_cell >= 0) {
+      if (accepted.folded_cell >= 0) {
         res.detail = fmt::format("the residual converged at a state where {} is folded (det F <= 0 at one of "
-                                 "its nodes)", describe_cell(folded_cell));
+                                 "its nodes)", describe_cell(accepted.folded_cell));
         return finish(NewtonReason::DivergedInvertedElement);
       }
-      if (min_det_f < settings_.min_det_f_ratio * start_min_det_f) {
+      if (accepted.min_det_f < settings_.min_det_f_ratio * st0.min_det_f) {
         res.detail = fmt::format("the smallest det F fell from {:.3g} to {:.3g} in one increment, in {}",
-                                 start_min_det_f, min_det_f, describe_cell(min_det_f_cell));
+                                 st0.min_det_f, accepted.min_det_f, describe_cell(accepted.min_det_f_cell));
         return finish(NewtonReason::DivergedInvertedElement);
       }
       return finish(rnorm <= settings_.atol ? NewtonReason::ConvergedAbsolute : NewtonReason::ConvergedRelative);
@@ -392,13 +386,11 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
       res.detail = trial.failure == NewtonReason::DivergedNaN
                        ? "the residual is not finite after every step reduction"
                        : fmt::format("{} inverts (det F <= 0) even after {} step halvings",
-                                     describe_cell(trial.inverted_cell), settings_.max_backtracks);
+                                     describe_cell(trial.status.inverted_cell), settings_.max_backtracks);
       return finish(trial.failure);
     }
     const double alpha = trial.alpha;
-    folded_cell = trial.folded_cell;
-    min_det_f = trial.min_det_f;
-    min_det_f_cell = trial.min_det_f_cell;
+    accepted = trial.status;
     r = std::move(rt);
     ActiveSetMonitor::Verdict verdict = ActiveSetMonitor::Verdict::Continue;
     if (!lambda_.empty()) {

@@ -220,10 +220,7 @@ private:
   struct TrialStep {
     double alpha = 1;
     double assembly_seconds = 0;
-    int inverted_cell = -1;
-    int folded_cell = -1;  // of the accepted trial state (fem::InternalForceStatus)
-    double min_det_f = 0;  // of the accepted trial state
-    int min_det_f_cell = -1;
+    fem::InternalForceStatus status;  // of the last trial state evaluated (the accepted one unless failed)
     bool failed = false;
     NewtonReason failure = NewtonReason::DivergedNaN;  // when failed
   };
