@@ -1,9 +1,10 @@
 #pragma once
 // Where a run's memory goes, from the figures every backend records per linear solve
 // (metrics.toml: memory_matrix_MB, memory_setup_MB, memory_block_copies_MB,
-// memory_krylov_MB, memory_heap_MB): at the solve that held the most heap, the Newton
-// matrix, what the preconditioner or factorisation kept (of it, blocks copied out of the
-// matrix), the Krylov space, and the rest of the heap (mesh, fields, state, contact data).
+// memory_krylov_MB, memory_heap_MB, memory_heap_free_MB): at the solve that held the most
+// heap, the Newton matrix, what the preconditioner or factorisation kept (of it, blocks
+// copied out of the matrix), the Krylov space, the rest of the heap (mesh, fields, state,
+// contact data), and what the allocator held freed.
 #include <map>
 #include <string>
 #include <vector>

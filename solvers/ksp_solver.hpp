@@ -84,6 +84,7 @@ private:
   PetscKSP ksp_;
   StagnationTest* stagnation_ = nullptr;  // owned by the KSP (its convergence-test context)
   double setup_seconds_ = 0;
+  double krylov_mb_ = 0;  // heap the KSP's work vectors hold: grown over the solves since release()
   std::string setup_output_;
   std::string setup_failure_;  // PETSc's message when the set-up failed (e.g. factorisation)
   std::map<std::string, double> setup_extra_;

@@ -50,6 +50,8 @@ double heap_in_use_mb() {
   return static_cast<double>(m.uordblks + m.hblkhd) / 1048576.0;
 }
 
+double heap_free_mb() { return static_cast<double>(mallinfo2().fordblks) / 1048576.0; }
+
 double aij_storage_mb(Mat A) {
   PetscBool aij = PETSC_FALSE;
   if (!A || PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(A), &aij, MATSEQAIJ, MATMPIAIJ, "") || !aij)

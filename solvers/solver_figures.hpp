@@ -21,6 +21,10 @@ double mg_operator_complexity(KSP ksp);
 // PETSc, hypre, MUMPS and stiction hold on the heap now. Differences around a set-up or a
 // solve say what that step kept.
 double heap_in_use_mb();
+// Bytes freed to the allocator and kept by it (glibc mallinfo2's fordblks), in MB: held by
+// the process, and resident where they were touched, though nothing uses them. Resident
+// memory above the heap in use and this is code, stacks and shared segments.
+double heap_free_mb();
 // Storage of an assembled AIJ matrix (values, column indices, row starts), in MB; 0 for
 // other types (shells, views).
 double aij_storage_mb(Mat A);

@@ -1,7 +1,7 @@
 // The Krylov diagnostics of every GMRES backend (solvers/ksp_solver.hpp): the stagnation
 // test (a hopeless solve stops after one window as DIVERGED_STAGNATION, a slow but steady
 // one is left alone), continuing a stagnated solve with a longer restart, and the
-// conditioning estimate from GMRES's Hessenberg matrix.
+// conditioning estimate from GMRES's Hessenberg matrix, and the memory of the Krylov space.
 #include <gtest/gtest.h>
 
 #include <petscksp.h>
@@ -159,6 +159,49 @@ TEST(KrylovConditioning, GmresEstimatesTheConditionOfTheLaplacian) {
   EXPECT_NEAR(s.extra.at("sigma_max_estimate"), sigma_max, 1e-6 * sigma_max);
   EXPECT_NEAR(s.extra.at("sigma_min_estimate"), sigma_min, 1e-6 * sigma_min);
   EXPECT_NEAR(s.extra.at("condition_estimate"), sigma_max / sigma_min, 1e-6 * sigma_max / sigma_min);
+}
+
+// The Krylov space a KSP holds is reported with every solve (memory_krylov_MB), also by
+// the solves that reuse it (a system without contact keeps its KSP), until release()
+// frees it with the set-up.
+TEST(KrylovMemory, TheKrylovSpaceHeldIsReportedAtEverySolveUntilReleased) {
+  const PetscInt n = 20000;  // 156 KB per vector
+  std::vector<std::tuple<PetscInt, PetscInt, double>> entries;
+  for (PetscInt i = 0; i < n; ++i) {
+    entries.emplace_back(i, i, 2.0);
+    if (i > 0) entries.emplace_back(i, i - 1, -1.0);
+    if (i + 1 < n) entries.emplace_back(i, i + 1, -1.0);
+  }
+  const NewtonSystem laplacian = system_of(n, entries, true);
+  // 30 unpreconditioned iterations never reach 1e-12 here: each solve fills the basis of 30.
+  STICTION_PETSC(PetscOptionsInsertString(
+      nullptr, "-ilu_gmres_pc_type none -ilu_gmres_ksp_gmres_restart 30 -ilu_gmres_ksp_max_it 30 -ilu_gmres_ksp_rtol 1e-12"));
+  auto solver = stiction::solvers::create_solver("ilu-gmres", PETSC_COMM_WORLD);
+  stiction::PetscVec x;
+  STICTION_PETSC(VecDuplicate(laplacian.rhs, x.out()));
+  auto krylov_mb = [&] {
+    STICTION_PETSC(VecZeroEntries(x));
+    const LinearSolveStats s = solver->solve(laplacian, x);
+    EXPECT_EQ(s.iterations, 30);
+    // The resident figures beside it: now, at the peak so far, and the freed heap held.
+    EXPECT_GT(s.extra.at("memory_resident_MB"), 0);
+    EXPECT_GE(s.extra.at("memory_peak_resident_MB"), s.extra.at("memory_resident_MB"));
+    EXPECT_GE(s.extra.at("memory_heap_free_MB"), 0);
+    return s.extra.at("memory_krylov_MB");
+  };
+  solver->setup(laplacian);
+  const double first = krylov_mb(), again = krylov_mb();
+  solver->release();
+  solver->setup(laplacian);
+  const double after_release = krylov_mb();
+  for (const char* key : {"-ilu_gmres_pc_type", "-ilu_gmres_ksp_gmres_restart", "-ilu_gmres_ksp_max_it", "-ilu_gmres_ksp_rtol"})
+    STICTION_PETSC(PetscOptionsClearValue(nullptr, key));
+  const double basis_mb = 30.0 * n * sizeof(PetscScalar) / 1048576.0;
+  // GMRES allocates its first few vectors at set-up, the rest as the basis grows.
+  EXPECT_GT(first, 0.8 * basis_mb);
+  EXPECT_LT(first, 1.2 * basis_mb);
+  EXPECT_NEAR(again, first, 0.05 * first) << "the second solve reuses the basis of the first";
+  EXPECT_NEAR(after_release, first, 0.05 * first) << "released, the basis is allocated (and counted) afresh";
 }
 
 }  // namespace
