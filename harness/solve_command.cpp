@@ -42,7 +42,7 @@ void print_state_change(const nonlinear::QuasiStaticSolver::StateChange& c) {
 void run_solve(const SolveOptions& o, const RunInfo& info) {
   const auto t_start = std::chrono::steady_clock::now();
   // On several MPI processes every process holds the same Newton state; rank 0 alone
-  // writes the files and prints the progress.
+  // prints the progress and writes the files, but for each process's piece of a VTU.
   int rank = 0, processes = 1;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   MPI_Comm_size(PETSC_COMM_WORLD, &processes);
@@ -129,17 +129,30 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   double until = o.until >= 0 ? o.until : std::numeric_limits<double>::infinity();
   if (o.quick) until = std::min(until, scene->quick_until);
   const int last_step = scene->problem.step_reaching(until);
+  // A load step's VTU: written by rank 0, or on several processes one piece per process
+  // (its own cells) and a PVTU by rank 0 that joins them.
+  const auto write_step_output = [&](const nonlinear::StepResult& r) {
+    const std::string stem = fmt::format("step-{:03d}", r.step);
+    if (processes == 1) {
+      write_vtu(out_dir + "/" + stem + ".vtu", *scene, newton.displacement(), newton.multipliers(), r.time);
+      pvd->add(r.time, stem + ".vtu");
+      return;
+    }
+    write_vtu_piece(fmt::format("{}/{}-p{}.vtu", out_dir, stem, rank), *scene, newton.displacement(),
+                    newton.multipliers(), r.time, newton.partition().owned_cells, rank);
+    if (!writer) return;
+    std::vector<std::string> pieces;
+    for (int k = 0; k < processes; ++k) pieces.push_back(fmt::format("{}-p{}.vtu", stem, k));
+    write_pvtu(out_dir + "/" + stem + ".pvtu", *scene, newton.displacement(), newton.multipliers(), r.time, pieces);
+    pvd->add(r.time, stem + ".pvtu");
+  };
   auto results = newton.run([&](const nonlinear::StepResult& r) {
     if (table) table->add(r, *scene);
     if (iteration_table) iteration_table->add(r);
     if (r.completes_step && writer) write_checkpoint(out_dir + "/checkpoint.bin",
                                               {scene->name, scene->level, newton.state(), newton.linear_tally()});
     if (contact_table && r.completes_step) contact_table->add(r, *scene, newton.displacement(), newton.multipliers());
-    if (scene->output.vtu && o.write_vtu && r.completes_step && writer) {
-      const std::string name = fmt::format("step-{:03d}.vtu", r.step);
-      write_vtu(out_dir + "/" + name, *scene, newton.displacement(), newton.multipliers(), r.time);
-      pvd->add(r.time, name);
-    }
+    if (scene->output.vtu && o.write_vtu && r.completes_step) write_step_output(r);
     if (verbose)
       fmt::print(stderr, "step {}/{}{}: t = {:.6g}, {} after {} Newton iterations, residual {:.3e} (reference {:.3e}), "
                  "{:.2f} s{}\n",

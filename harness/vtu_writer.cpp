@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numeric>
 #include <string_view>
 #include <type_traits>
+#include <variant>
 
 #include "common/error.hpp"
 #include "fem/elasticity_assembly.hpp"
@@ -59,68 +61,168 @@ private:
   VtkAppendedData appended_;
 };
 
-}  // namespace
+// One DataArray of a piece: name, components, values, and how ASCII prints it.
+struct DataArray {
+  std::string name;
+  int components = 1;
+  std::variant<std::vector<double>, std::vector<std::int32_t>> values;
+  int per_line = 1, digits = 12;
+  std::string attributes() const {
+    return fmt::format("Name=\"{}\"{}", name, components > 1 ? fmt::format(" NumberOfComponents=\"{}\"", components) : "");
+  }
+  const char* type() const {
+    return std::holds_alternative<std::vector<double>>(values) ? vtk_type_name<double>() : vtk_type_name<std::int32_t>();
+  }
+};
 
-void write_vtu(const std::string& path, const scene::Scene& scene, const std::vector<double>& u,
-               const std::vector<double>& lambda, double t) {
+// The cells of one piece with their point and cell data: the whole mesh with every node
+// (process < 0), or one process's cells with the nodes they use, numbered in ascending
+// order of the whole mesh's numbering.
+struct Piece {
+  int n_points = 0, n_cells = 0, nodes_per_cell = 0;
+  std::vector<double> points;
+  std::vector<std::int64_t> connectivity, offsets;
+  std::vector<std::uint8_t> types;
+  std::vector<DataArray> point_data, cell_data;
+};
+
+Piece build_piece(const scene::Scene& scene, const std::vector<double>& u, const std::vector<double>& lambda, double t,
+                  const std::vector<int>& cells, int process) {
   const fem::FieldSpace& space = *scene.space;
-  const int d = space.dim(), nn = space.n_nodes(), nc = scene.mesh.n_cells(), npc = space.nodes_per_cell();
-  const std::vector<double> nodal = space.nodal_values(u);
-  const std::vector<double> stress = fem::cell_cauchy_stress(space, scene.problem.cell_material, u);
+  const int d = space.dim(), nn = space.n_nodes(), npc = space.nodes_per_cell();
   const bool quad = fem::is_quadratic(space.kind());
   const std::uint8_t vtk_type = d == 2 ? (quad ? 22 : 5) : (quad ? 24 : 10);
-  const bool binary = scene.output.vtu_format == scene::VtuFormat::Binary;
-
-  std::vector<double> points(static_cast<size_t>(nn) * 3, 0.0), displacement(static_cast<size_t>(nn) * 3, 0.0);
-  for (int n = 0; n < nn; ++n) {
-    space.node_position(n, &points[static_cast<size_t>(n) * 3]);
-    for (int c = 0; c < d; ++c) displacement[static_cast<size_t>(n) * 3 + c] = nodal[static_cast<size_t>(n) * d + c];
+  Piece p;
+  p.n_cells = static_cast<int>(cells.size());
+  p.nodes_per_cell = npc;
+  std::vector<int> local(nn, process < 0 ? 0 : -1), nodes(npc);
+  for (int c : cells) {
+    space.cell_nodes(c, nodes.data());
+    for (int n : nodes) local[n] = 0;
   }
-  std::vector<std::int64_t> connectivity(static_cast<size_t>(nc) * npc), offsets(nc);
-  std::vector<int> nodes(npc);
-  for (int c = 0; c < nc; ++c) {
-    space.cell_nodes(c, nodes.data());  // local order = VTK order (mesh::SimplexEdges)
-    std::copy(nodes.begin(), nodes.end(), connectivity.begin() + static_cast<std::ptrdiff_t>(c) * npc);
-    offsets[c] = static_cast<std::int64_t>(c + 1) * npc;
+  std::vector<int> used;  // the piece's points, by whole-mesh node number
+  for (int n = 0; n < nn; ++n)
+    if (local[n] == 0) local[n] = p.n_points++, used.push_back(n);
+  for (size_t k = 0; k < cells.size(); ++k) {
+    space.cell_nodes(cells[k], nodes.data());  // local order = VTK order (mesh::SimplexEdges)
+    for (int n : nodes) p.connectivity.push_back(local[n]);
+    p.offsets.push_back(static_cast<std::int64_t>(k + 1) * npc);
   }
-  std::vector<double> mises(nc);
-  for (int c = 0; c < nc; ++c) mises[c] = von_mises(&stress[static_cast<size_t>(c) * 9]);
+  p.types.assign(cells.size(), vtk_type);
 
+  const std::vector<double> nodal = space.nodal_values(u);
+  std::vector<double> displacement(static_cast<size_t>(p.n_points) * 3, 0.0);
+  p.points.assign(static_cast<size_t>(p.n_points) * 3, 0.0);
+  for (int k = 0; k < p.n_points; ++k) {
+    space.node_position(used[k], &p.points[static_cast<size_t>(k) * 3]);
+    for (int c = 0; c < d; ++c) displacement[static_cast<size_t>(k) * 3 + c] = nodal[static_cast<size_t>(used[k]) * d + c];
+  }
+  p.point_data.push_back({"displacement", 3, std::move(displacement), 3});
+  if (space.has_pressure()) {
+    const std::vector<double> pressure = space.nodal_pressure(u);
+    std::vector<double> mine(p.n_points);
+    for (int k = 0; k < p.n_points; ++k) mine[k] = pressure[used[k]];
+    p.point_data.push_back({"pressure", 1, std::move(mine)});
+  }
+  if (!scene.problem.constraints.empty() && !lambda.empty()) {
+    std::vector<std::int32_t> state(p.n_points, -1);
+    std::vector<double> multiplier(static_cast<size_t>(p.n_points) * 3, 0.0), normal(p.n_points, 0.0);
+    for (const auto& [pair, slave_nodes] : multiplier_nodes(scene, t, u, lambda))
+      for (const auto& node : slave_nodes) {  // a slave vertex is node `vertex` (vertices come first)
+        const int k = local[node.vertex];
+        if (k < 0) continue;  // on another process's piece
+        state[k] = node.state;
+        normal[k] = node.normal;
+        for (int c = 0; c < 3; ++c) multiplier[static_cast<size_t>(k) * 3 + c] = node.multiplier[c];
+      }
+    p.point_data.push_back({"contact_multiplier", 3, std::move(multiplier), 3});
+    p.point_data.push_back({"contact_pressure", 1, std::move(normal)});
+    p.point_data.push_back({"contact_state", 1, std::move(state)});
+  }
+
+  const std::vector<double> stress = fem::cell_cauchy_stress(space, scene.problem.cell_material, u);
+  std::vector<double> mine(cells.size() * 9), mises(cells.size());
+  std::vector<std::int32_t> body(cells.size());
+  for (size_t k = 0; k < cells.size(); ++k) {
+    const double* sigma = &stress[static_cast<size_t>(cells[k]) * 9];
+    std::copy(sigma, sigma + 9, mine.begin() + static_cast<std::ptrdiff_t>(k) * 9);
+    mises[k] = von_mises(sigma);
+    body[k] = scene.body_of_cell[cells[k]];
+  }
+  p.cell_data.push_back({"cauchy_stress", 9, std::move(mine), 9, 10});
+  p.cell_data.push_back({"von_mises", 1, std::move(mises), 1, 10});
+  p.cell_data.push_back({"body_id", 1, std::move(body)});
+  if (process >= 0) p.cell_data.push_back({"process", 1, std::vector<std::int32_t>(cells.size(), process)});
+  return p;
+}
+
+void write_piece(const std::string& path, const Piece& p, bool binary) {
   try {
     auto out = fmt::output_file(path);
     out.print("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"{}\" byte_order=\"LittleEndian\"{}{}>\n"
               "<UnstructuredGrid>\n<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n",
-              binary ? "1.0" : "0.1", binary ? " " : "", binary ? vtk_compressed_file_attributes : "", nn, nc);
+              binary ? "1.0" : "0.1", binary ? " " : "", binary ? vtk_compressed_file_attributes : "", p.n_points,
+              p.n_cells);
     ArrayWriter arrays(out, binary);
+    const auto write_data = [&](const DataArray& a) {
+      std::visit([&](const auto& v) { arrays.write(a.attributes(), v, a.per_line, a.digits); }, a.values);
+    };
     out.print("<Points>\n");
-    arrays.write("NumberOfComponents=\"3\"", points, 3, 10);
+    arrays.write("NumberOfComponents=\"3\"", p.points, 3, 10);
     out.print("</Points>\n<Cells>\n");
-    arrays.write("Name=\"connectivity\"", connectivity, npc);
-    arrays.write("Name=\"offsets\"", offsets);
-    arrays.write("Name=\"types\"", std::vector<std::uint8_t>(nc, vtk_type));
+    arrays.write("Name=\"connectivity\"", p.connectivity, p.nodes_per_cell);
+    arrays.write("Name=\"offsets\"", p.offsets);
+    arrays.write("Name=\"types\"", p.types);
     out.print("</Cells>\n<PointData Vectors=\"displacement\">\n");
-    arrays.write("Name=\"displacement\" NumberOfComponents=\"3\"", displacement, 3);
-    if (space.has_pressure()) arrays.write("Name=\"pressure\"", space.nodal_pressure(u));
-    if (!scene.problem.constraints.empty() && !lambda.empty()) {
-      std::vector<std::int32_t> state(nn, -1);
-      std::vector<double> multiplier(static_cast<size_t>(nn) * 3, 0.0), normal(nn, 0.0);
-      for (const auto& [pair, nodes] : multiplier_nodes(scene, t, u, lambda))
-        for (const auto& node : nodes) {  // a slave vertex is point `vertex` (vertices come first)
-          state[node.vertex] = node.state;
-          normal[node.vertex] = node.normal;
-          for (int c = 0; c < 3; ++c) multiplier[static_cast<size_t>(node.vertex) * 3 + c] = node.multiplier[c];
-        }
-      arrays.write("Name=\"contact_multiplier\" NumberOfComponents=\"3\"", multiplier, 3);
-      arrays.write("Name=\"contact_pressure\"", normal);
-      arrays.write("Name=\"contact_state\"", state);
-    }
+    for (const auto& a : p.point_data) write_data(a);
     out.print("</PointData>\n<CellData>\n");
-    arrays.write("Name=\"cauchy_stress\" NumberOfComponents=\"9\"", stress, 9, 10);
-    arrays.write("Name=\"von_mises\"", mises, 1, 10);
-    arrays.write("Name=\"body_id\"", std::vector<std::int32_t>(scene.body_of_cell.begin(), scene.body_of_cell.end()));
+    for (const auto& a : p.cell_data) write_data(a);
     out.print("</CellData>\n</Piece>\n</UnstructuredGrid>\n");
     arrays.finish();
     out.print("</VTKFile>\n");
+  } catch (const std::system_error& e) {
+    throw Error(fmt::format("cannot write '{}': {}", path, e.what()));
+  }
+}
+
+std::vector<int> all_cells(const scene::Scene& scene) {
+  std::vector<int> cells(scene.mesh.n_cells());
+  std::iota(cells.begin(), cells.end(), 0);
+  return cells;
+}
+
+}  // namespace
+
+void write_vtu(const std::string& path, const scene::Scene& scene, const std::vector<double>& u,
+               const std::vector<double>& lambda, double t) {
+  write_piece(path, build_piece(scene, u, lambda, t, all_cells(scene), -1),
+              scene.output.vtu_format == scene::VtuFormat::Binary);
+}
+
+void write_vtu_piece(const std::string& path, const scene::Scene& scene, const std::vector<double>& u,
+                     const std::vector<double>& lambda, double t, const std::vector<int>& cells, int process) {
+  write_piece(path, build_piece(scene, u, lambda, t, cells, process),
+              scene.output.vtu_format == scene::VtuFormat::Binary);
+}
+
+void write_pvtu(const std::string& path, const scene::Scene& scene, const std::vector<double>& u,
+                const std::vector<double>& lambda, double t, const std::vector<std::string>& piece_files) {
+  const Piece declared = build_piece(scene, u, lambda, t, {}, 0);  // the pieces' arrays, without data
+  const auto declare = [](const DataArray& a) {
+    return fmt::format("<PDataArray type=\"{}\" {}/>\n", a.type(), a.attributes());
+  };
+  try {
+    auto out = fmt::output_file(path);
+    out.print("<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"0.1\" "
+              "byte_order=\"LittleEndian\">\n<PUnstructuredGrid GhostLevel=\"0\">\n"
+              "<PPoints>\n<PDataArray type=\"Float64\" NumberOfComponents=\"3\"/>\n</PPoints>\n"
+              "<PPointData Vectors=\"displacement\">\n");
+    for (const auto& a : declared.point_data) out.print("{}", declare(a));
+    out.print("</PPointData>\n<PCellData>\n");
+    for (const auto& a : declared.cell_data) out.print("{}", declare(a));
+    out.print("</PCellData>\n");
+    for (const auto& f : piece_files) out.print("<Piece Source=\"{}\"/>\n", f);
+    out.print("</PUnstructuredGrid>\n</VTKFile>\n");
   } catch (const std::system_error& e) {
     throw Error(fmt::format("cannot write '{}': {}", path, e.what()));
   }

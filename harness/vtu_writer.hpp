@@ -1,6 +1,7 @@
 #pragma once
 // ParaView output: one VTU per load step (quadratic cells for P2, with nodal values at
-// vertices and edge midpoints) and a PVD collection indexing them by load step. The arrays
+// vertices and edge midpoints), or on several MPI processes one VTU piece per process and a
+// PVTU joining them, and a PVD collection indexing them by load step. The arrays
 // are zlib-compressed binary in the appended section (vtk_binary.hpp), or ASCII text when
 // the scene asks for `[output] vtu_format = "ascii"`.
 #include <string>
@@ -19,6 +20,14 @@ double von_mises(const double* sigma);
 // 1 stick, 2 slip; -1 at every point that carries no multiplier).
 void write_vtu(const std::string& path, const scene::Scene& scene, const std::vector<double>& u,
                const std::vector<double>& lambda = {}, double t = 0);
+// The same for the given cells only (one process's), with the nodes they use and a cell
+// array "process" holding `process`.
+void write_vtu_piece(const std::string& path, const scene::Scene& scene, const std::vector<double>& u,
+                     const std::vector<double>& lambda, double t, const std::vector<int>& cells, int process);
+// The PVTU that joins the pieces (file names relative to it) written by write_vtu_piece
+// for the same state.
+void write_pvtu(const std::string& path, const scene::Scene& scene, const std::vector<double>& u,
+                const std::vector<double>& lambda, double t, const std::vector<std::string>& piece_files);
 
 class PvdCollection {
 public:

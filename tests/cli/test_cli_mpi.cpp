@@ -1,13 +1,15 @@
 // stiction launched by mpirun on two processes: `solve` follows the one-process Newton path
 // (the same Newton iterations, forces to 1e-8, Krylov counts within a band), rank 0 alone
-// writes; every other command, and a backend that runs on one process, is refused with one
+// writes but for each process's piece of a VTU; every other command, and a backend that runs on one process, is refused with one
 // message from rank 0 and exit code 2 before any work; bad input and a diverging Newton
 // name their cause once; no process is left running (each run is under `timeout`, which
 // exits 124 on a hang). Labelled `mpi` (ctest -L mpi).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +20,7 @@
 #include <vector>
 
 #include "cli_run.hpp"
+#include "vtu_reader.hpp"
 
 namespace {
 
@@ -229,6 +232,65 @@ TEST_F(StictionUnderMpirun, BenchRanksAxisRefusesAOneProcessBackend) {
   ASSERT_EQ(r.error_lines().size(), 1u) << r.err;
   EXPECT_NE(r.error_lines()[0].find("'lu-umfpack' runs on one MPI process"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "sweep" / "runs.csv")) << "the refused sweep started runs";
+}
+
+// On two processes each process writes the cells it assembles as a VTU piece and rank 0 a
+// PVTU joining them: together the pieces hold every cell once, and at every point the
+// one-process solution (the Newton path is the same; values to 1e-8 of the largest).
+TEST_F(StictionUnderMpirun, EachProcessWritesItsPieceOfTheSolutionAndRankZeroJoinsThem) {
+  const fs::path one = dir_ / "one", two = dir_ / "two";
+  const std::vector<std::string> common{"solve", "sliding-block-2d", "--quick", "--quiet", "--out"};
+  auto with_out = [&](const fs::path& out) {
+    std::vector<std::string> a = common;
+    a.push_back(out.string());
+    return a;
+  };
+  const CliRun r1 = run(1, with_out(one)), r2 = run(2, with_out(two));
+  ASSERT_EQ(r1.exit_code, 0) << r1.err;
+  ASSERT_EQ(r2.exit_code, 0) << r2.err;
+  EXPECT_FALSE(fs::exists(two / "step-001.vtu")) << "two processes write pieces, not the whole";
+  std::ifstream pvd(two / "solution.pvd");
+  const std::string collection((std::istreambuf_iterator<char>(pvd)), std::istreambuf_iterator<char>());
+  EXPECT_NE(collection.find("file=\"step-001.pvtu\""), std::string::npos) << collection;
+  std::ifstream pvtu_file(two / "step-001.pvtu");
+  const std::string pvtu((std::istreambuf_iterator<char>(pvtu_file)), std::istreambuf_iterator<char>());
+  ASSERT_FALSE(pvtu.empty()) << "no step-001.pvtu";
+
+  const auto whole = stiction::test::read_vtu((one / "step-001.vtu").string());
+  const auto& points = whole.array("Points").values;
+  const auto& u = whole.array("displacement").values;
+  const auto& state = whole.array("contact_state").values;
+  std::map<std::pair<long long, long long>, size_t> point_at;  // 2D: (x, y) to 1e-9
+  for (size_t k = 0; k + 2 < points.size(); k += 3)
+    point_at[{std::llround(points[k] * 1e9), std::llround(points[k + 1] * 1e9)}] = k / 3;
+  double u_max = 0;
+  for (double v : u) u_max = std::max(u_max, std::abs(v));
+  ASSERT_GT(u_max, 0);
+  // The PVTU declares every array the one-process file has, and the pieces' process number.
+  for (const auto& a : whole.arrays)
+    if (a.name != "Points" && a.name != "connectivity" && a.name != "offsets" && a.name != "types")
+      EXPECT_NE(pvtu.find("Name=\"" + a.name + "\""), std::string::npos) << a.name << " not declared:\n" << pvtu;
+
+  int cells = 0;
+  for (int rank = 0; rank < 2; ++rank) {
+    const std::string name = "step-001-p" + std::to_string(rank) + ".vtu";
+    EXPECT_NE(pvtu.find("<Piece Source=\"" + name + "\"/>"), std::string::npos) << pvtu;
+    const auto piece = stiction::test::read_vtu((two / name).string());
+    const int n_cells = std::stoi(piece.piece.at("NumberOfCells"));
+    EXPECT_GT(n_cells, 0) << name;
+    cells += n_cells;
+    for (double p : piece.array("process").values) ASSERT_EQ(p, rank) << name;
+    const auto& x = piece.array("Points").values;
+    const auto& pu = piece.array("displacement").values;
+    const auto& ps = piece.array("contact_state").values;
+    for (size_t k = 0; k + 2 < x.size(); k += 3) {
+      const auto at = point_at.find({std::llround(x[k] * 1e9), std::llround(x[k + 1] * 1e9)});
+      ASSERT_NE(at, point_at.end()) << name << ": point " << k / 3 << " is not a point of the whole mesh";
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(pu[k + c], u[at->second * 3 + c], 1e-8 * u_max) << name << " point " << k / 3;
+      EXPECT_EQ(ps[k / 3], state[at->second]) << name << " point " << k / 3;
+    }
+  }
+  EXPECT_EQ(cells, std::stoi(whole.piece.at("NumberOfCells"))) << "the pieces hold every cell once";
 }
 
 TEST_F(StictionUnderMpirun, DivergingNewtonOnTwoProcessesGivesOneMessageAndKeepsItsRows) {
