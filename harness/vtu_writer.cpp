@@ -86,37 +86,31 @@ struct Piece {
   std::vector<DataArray> point_data, cell_data;
 };
 
-Piece build_piece(const scene::Scene& scene, const std::vector<double>& u, const std::vector<double>& lambda, double t,
-                  const std::vector<int>& cells, int process) {
-  const fem::FieldSpace& space = *scene.space;
-  const int d = space.dim(), nn = space.n_nodes(), npc = space.nodes_per_cell();
-  const bool quad = fem::is_quadratic(space.kind());
-  const std::uint8_t vtk_type = d == 2 ? (quad ? 22 : 5) : (quad ? 24 : 10);
-  Piece p;
-  p.n_cells = static_cast<int>(cells.size());
-  p.nodes_per_cell = npc;
-  std::vector<int> local(nn, process < 0 ? 0 : -1), nodes(npc);
+// The piece's points: every node of the whole mesh (whole), or those its cells use, in
+// ascending order; local[n] is node n's point number, -1 for a node not in the piece.
+std::vector<int> piece_points(const fem::FieldSpace& space, const std::vector<int>& cells, bool whole,
+                              std::vector<int>& local) {
+  local.assign(space.n_nodes(), whole ? 0 : -1);
+  std::vector<int> nodes(space.nodes_per_cell()), used;
   for (int c : cells) {
     space.cell_nodes(c, nodes.data());
     for (int n : nodes) local[n] = 0;
   }
-  std::vector<int> used;  // the piece's points, by whole-mesh node number
-  for (int n = 0; n < nn; ++n)
-    if (local[n] == 0) local[n] = p.n_points++, used.push_back(n);
-  for (size_t k = 0; k < cells.size(); ++k) {
-    space.cell_nodes(cells[k], nodes.data());  // local order = VTK order (mesh::SimplexEdges)
-    for (int n : nodes) p.connectivity.push_back(local[n]);
-    p.offsets.push_back(static_cast<std::int64_t>(k + 1) * npc);
-  }
-  p.types.assign(cells.size(), vtk_type);
+  for (int n = 0; n < space.n_nodes(); ++n)
+    if (local[n] == 0) local[n] = static_cast<int>(used.size()), used.push_back(n);
+  return used;
+}
 
+// Displacement, pressure of mixed bodies, and with contact, at the slave vertices, the
+// multiplier, its normal part and the contact state.
+void add_point_data(Piece& p, const scene::Scene& scene, const std::vector<double>& u, const std::vector<double>& lambda,
+                    double t, const std::vector<int>& used, const std::vector<int>& local) {
+  const fem::FieldSpace& space = *scene.space;
+  const int d = space.dim();
   const std::vector<double> nodal = space.nodal_values(u);
   std::vector<double> displacement(static_cast<size_t>(p.n_points) * 3, 0.0);
-  p.points.assign(static_cast<size_t>(p.n_points) * 3, 0.0);
-  for (int k = 0; k < p.n_points; ++k) {
-    space.node_position(used[k], &p.points[static_cast<size_t>(k) * 3]);
+  for (int k = 0; k < p.n_points; ++k)
     for (int c = 0; c < d; ++c) displacement[static_cast<size_t>(k) * 3 + c] = nodal[static_cast<size_t>(used[k]) * d + c];
-  }
   p.point_data.push_back({"displacement", 3, std::move(displacement), 3});
   if (space.has_pressure()) {
     const std::vector<double> pressure = space.nodal_pressure(u);
@@ -124,23 +118,26 @@ Piece build_piece(const scene::Scene& scene, const std::vector<double>& u, const
     for (int k = 0; k < p.n_points; ++k) mine[k] = pressure[used[k]];
     p.point_data.push_back({"pressure", 1, std::move(mine)});
   }
-  if (!scene.problem.constraints.empty() && !lambda.empty()) {
-    std::vector<std::int32_t> state(p.n_points, -1);
-    std::vector<double> multiplier(static_cast<size_t>(p.n_points) * 3, 0.0), normal(p.n_points, 0.0);
-    for (const auto& [pair, slave_nodes] : multiplier_nodes(scene, t, u, lambda))
-      for (const auto& node : slave_nodes) {  // a slave vertex is node `vertex` (vertices come first)
-        const int k = local[node.vertex];
-        if (k < 0) continue;  // on another process's piece
-        state[k] = node.state;
-        normal[k] = node.normal;
-        for (int c = 0; c < 3; ++c) multiplier[static_cast<size_t>(k) * 3 + c] = node.multiplier[c];
-      }
-    p.point_data.push_back({"contact_multiplier", 3, std::move(multiplier), 3});
-    p.point_data.push_back({"contact_pressure", 1, std::move(normal)});
-    p.point_data.push_back({"contact_state", 1, std::move(state)});
-  }
+  if (scene.problem.constraints.empty() || lambda.empty()) return;
+  std::vector<std::int32_t> state(p.n_points, -1);
+  std::vector<double> multiplier(static_cast<size_t>(p.n_points) * 3, 0.0), normal(p.n_points, 0.0);
+  for (const auto& [pair, slave_nodes] : multiplier_nodes(scene, t, u, lambda))
+    for (const auto& node : slave_nodes) {  // a slave vertex is node `vertex` (vertices come first)
+      const int k = local[node.vertex];
+      if (k < 0) continue;  // in another process's piece
+      state[k] = node.state;
+      normal[k] = node.normal;
+      for (int c = 0; c < 3; ++c) multiplier[static_cast<size_t>(k) * 3 + c] = node.multiplier[c];
+    }
+  p.point_data.push_back({"contact_multiplier", 3, std::move(multiplier), 3});
+  p.point_data.push_back({"contact_pressure", 1, std::move(normal)});
+  p.point_data.push_back({"contact_state", 1, std::move(state)});
+}
 
-  const std::vector<double> stress = fem::cell_cauchy_stress(space, scene.problem.cell_material, u);
+// Cauchy stress and von Mises at the centroids, body id, and a piece's process number.
+void add_cell_data(Piece& p, const scene::Scene& scene, const std::vector<double>& u, const std::vector<int>& cells,
+                   int process) {
+  const std::vector<double> stress = fem::cell_cauchy_stress(*scene.space, scene.problem.cell_material, u);
   std::vector<double> mine(cells.size() * 9), mises(cells.size());
   std::vector<std::int32_t> body(cells.size());
   for (size_t k = 0; k < cells.size(); ++k) {
@@ -153,6 +150,30 @@ Piece build_piece(const scene::Scene& scene, const std::vector<double>& u, const
   p.cell_data.push_back({"von_mises", 1, std::move(mises), 1, 10});
   p.cell_data.push_back({"body_id", 1, std::move(body)});
   if (process >= 0) p.cell_data.push_back({"process", 1, std::vector<std::int32_t>(cells.size(), process)});
+}
+
+Piece build_piece(const scene::Scene& scene, const std::vector<double>& u, const std::vector<double>& lambda, double t,
+                  const std::vector<int>& cells, int process) {
+  const fem::FieldSpace& space = *scene.space;
+  const int d = space.dim(), npc = space.nodes_per_cell();
+  const bool quad = fem::is_quadratic(space.kind());
+  Piece p;
+  p.n_cells = static_cast<int>(cells.size());
+  p.nodes_per_cell = npc;
+  std::vector<int> local;
+  const std::vector<int> used = piece_points(space, cells, process < 0, local);
+  p.n_points = static_cast<int>(used.size());
+  p.points.assign(used.size() * 3, 0.0);
+  for (size_t k = 0; k < used.size(); ++k) space.node_position(used[k], &p.points[k * 3]);
+  std::vector<int> nodes(npc);
+  for (size_t k = 0; k < cells.size(); ++k) {
+    space.cell_nodes(cells[k], nodes.data());  // local order = VTK order (mesh::SimplexEdges)
+    for (int n : nodes) p.connectivity.push_back(local[n]);
+    p.offsets.push_back(static_cast<std::int64_t>(k + 1) * npc);
+  }
+  p.types.assign(cells.size(), d == 2 ? (quad ? 22 : 5) : (quad ? 24 : 10));
+  add_point_data(p, scene, u, lambda, t, used, local);
+  add_cell_data(p, scene, u, cells, process);
   return p;
 }
 
