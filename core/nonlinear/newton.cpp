@@ -480,6 +480,11 @@ std::vector<StepResult> QuasiStaticSolver::run(const std::function<void(const St
     if (on_step) on_step(r);
   };
   int cut = 0, converged_at_cut = 0;
+  // wait[c]: converged parts at cut c before the size of cut c - 1 is tried again; `probing`:
+  // the current size was grown back to and has not yet converged over a whole increment
+  // (a part clamped to a step's end is smaller and proves nothing).
+  std::vector<int> wait(static_cast<size_t>(settings_.max_cuts) + 2, 2);
+  bool probing = false;
   for (int k = first_step; k <= last_step; ++k) {
     const double t_end = problem_.step_times[k], full = t_end - time_;
     double increment = std::ldexp(full, -cut);  // a cut carries over into the next step
@@ -497,6 +502,8 @@ std::vector<StepResult> QuasiStaticSolver::run(const std::function<void(const St
         report(r);
         if (!r.retried) return all;
         if (r.reason == NewtonReason::DivergedLinearSolver) linear_failure_retried = true;
+        if (probing) wait[cut + 1] = std::min(2 * wait[cut + 1], std::max(settings_.max_regrow_wait, 2));
+        probing = false;
         restore(saved);
         // Half of what was attempted: a grown-back increment may have been clamped to the
         // step's end, and halving the nominal one would attempt the same increment again.
@@ -505,6 +512,10 @@ std::vector<StepResult> QuasiStaticSolver::run(const std::function<void(const St
         converged_at_cut = 0;
         continue;
       }
+      if (probing && t - time_ >= (1 - 1e-9) * increment) {
+        wait[cut + 1] = 2;
+        probing = false;
+      }
       time_ = t;
       r.completes_step = t == t_end;
       if (r.completes_step) completed_step_ = k;
@@ -512,11 +523,12 @@ std::vector<StepResult> QuasiStaticSolver::run(const std::function<void(const St
       if (r.completes_step) break;
       // Grow back after two converged parts at one size (after one, a sliding step that
       // had failed at full size failed again at once: ironing-2d level 0, 25 wasted
-      // iterations per load step).
-      if (cut > 0 && ++converged_at_cut == 2) {
+      // iterations per load step), or after more where the larger size failed again.
+      if (cut > 0 && ++converged_at_cut >= wait[cut]) {
         increment *= 2;
         --cut;
         converged_at_cut = 0;
+        probing = true;
       }
     }
   }

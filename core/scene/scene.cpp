@@ -147,6 +147,10 @@ struct Schemas {
               {}, &phase},
              {"max_cuts", VT::Integer, "halvings of a failed load increment before the run stops (0: off)", false,
               std::int64_t{6}},
+             {"max_regrow_wait", VT::Integer,
+              "converged parts at a cut size before a size that failed again is retried: 2, doubled at each such "
+              "failure up to this (2: always 2)",
+              false, std::int64_t{16}},
              {"quick_until", VT::Float, "pseudo-time where the scene's short version (--quick) stops (default: the end)",
               false}}};
     newton = {"newton",
@@ -712,6 +716,7 @@ std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& o
   as.cycle_remedies = static_cast<int>(get_int(nw, S.newton, "cycle_remedies"));
   as.remedy_factor = get_float(nw, S.newton, "cycle_remedy_factor");
   s.newton.max_cuts = static_cast<int>(get_int(sub(root, "load"), S.load, "max_cuts"));
+  s.newton.max_regrow_wait = static_cast<int>(get_int(sub(root, "load"), S.load, "max_regrow_wait"));
   if (const auto quick = sub(root, "load")["quick_until"].value<double>()) s.quick_until = *quick;
   if (!(s.newton.atol >= 0 && s.newton.rtol >= 0 && s.newton.max_iterations >= 1 && s.newton.krylov_rtol >= 0 &&
         s.newton.krylov_rtol < 1 && s.newton.min_det_f_ratio >= 0 && s.newton.min_det_f_ratio < 1))
@@ -719,9 +724,9 @@ std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& o
                             "max_iterations >= 1",
                             origin));
   if (!(as.update_tolerance >= 0 && as.max_held >= 0 && as.cycle_remedies >= 0 && as.remedy_factor > 0 &&
-        as.remedy_factor < 1 && s.newton.max_cuts >= 0))
+        as.remedy_factor < 1 && s.newton.max_cuts >= 0 && s.newton.max_regrow_wait >= 2))
     throw Error(fmt::format("{}: newton.state_update_tolerance, max_held_iterations, cycle_remedies and load.max_cuts "
-                            "must be >= 0, cycle_remedy_factor in (0, 1)",
+                            "must be >= 0, load.max_regrow_wait >= 2, cycle_remedy_factor in (0, 1)",
                             origin));
   const toml::table& out = sub(root, "output");
   s.output.vtu = get_bool(out, S.output, "vtu");

@@ -331,14 +331,17 @@ struct Cantilever {
   fem::FieldSpace space{m, BasisKind::P2Hierarchical};
   materials::NeoHookean law{1000.0, 0.3};
   ElasticityProblem p;
-  Cantilever() {
+  // `steps` equal load steps from t = 0 to 2, the end traction growing linearly to 1 at t = 2
+  // times `load`.
+  explicit Cantilever(int steps = 2, double load = 1.0) {
     p.space = &space;
     p.cell_material.assign(m.n_cells(), &law);
-    p.step_times = {0.0, 1.0, 2.0};
+    p.step_times.clear();
+    for (int k = 0; k <= steps; ++k) p.step_times.push_back(2.0 * k / steps);
     p.dirichlet.push_back({"clamp", 1, {0, 1}, [](const double*, double, double* u) { u[0] = u[1] = 0; }});
-    p.tractions.push_back({"end", 2, [](const double*, double time, double* t) {
+    p.tractions.push_back({"end", 2, [load](const double*, double time, double* t) {
                              t[0] = 0;
-                             t[1] = -0.5 * time;
+                             t[1] = -0.5 * load * time;
                            }});
   }
 };
@@ -422,6 +425,41 @@ TEST(Newton, CutBackRetriesAFailedStepAndReachesTheSameState) {
   double diff = 0, size = 0;
   for (size_t k = 0; k < reference.displacement().size(); ++k) {
     diff = std::max(diff, std::abs(with.displacement()[k] - reference.displacement()[k]));
+    size = std::max(size, std::abs(reference.displacement()[k]));
+  }
+  EXPECT_LT(diff, 1e-8 * size);
+}
+
+// Where the doubled increment keeps failing (here: twelve load steps and three Newton
+// iterations allowed, in which an eighth of a step converges and a quarter mostly does not),
+// waiting twice as long after each such failure (max_regrow_wait) wastes fewer attempts than
+// growing back after every two parts, and reaches the same state.
+TEST(Newton, CutBackWaitsLongerBeforeRetryingAnIncrementThatFailedAgain) {
+  Cantilever c(12);
+  auto solver = solvers::create_solver("lu-mumps", PETSC_COMM_WORLD);
+  QuasiStaticSolver reference(PETSC_COMM_WORLD, c.p, NewtonSettings{}, *solver);
+  ASSERT_TRUE(reference.run().back().converged());
+
+  NewtonSettings tight;
+  tight.max_iterations = 3;
+  const auto failed_attempts = [](const std::vector<StepResult>& parts) {
+    return std::count_if(parts.begin(), parts.end(), [](const StepResult& r) { return r.retried; });
+  };
+  tight.max_regrow_wait = 2;
+  QuasiStaticSolver every_two(PETSC_COMM_WORLD, c.p, tight, *solver);
+  const auto eager = every_two.run();
+  tight.max_regrow_wait = 16;
+  QuasiStaticSolver backing_off(PETSC_COMM_WORLD, c.p, tight, *solver);
+  const auto patient = backing_off.run();
+  ASSERT_TRUE(eager.back().converged() && patient.back().converged());
+  ASSERT_DOUBLE_EQ(patient.back().time, 2.0);
+  // Measured: 41 failed attempts of 133 with 2, 9 of 101 with 16.
+  ASSERT_GE(failed_attempts(eager), 20) << "the doubled increment must keep failing for the wait to matter";
+  EXPECT_LT(2 * failed_attempts(patient), failed_attempts(eager));
+  EXPECT_LT(patient.size(), eager.size());
+  double diff = 0, size = 0;
+  for (size_t k = 0; k < reference.displacement().size(); ++k) {
+    diff = std::max(diff, std::abs(backing_off.displacement()[k] - reference.displacement()[k]));
     size = std::max(size, std::abs(reference.displacement()[k]));
   }
   EXPECT_LT(diff, 1e-8 * size);
