@@ -36,9 +36,6 @@ using Row = std::map<std::string, std::string>;
 // (value, backend) -> its row; for a pair's grid, (first value, second value) -> one backend's row.
 using CellMap = std::map<std::pair<std::string, std::string>, const Row*>;
 
-// Why a cell failed, from its run's metrics.toml: the Newton verdict's detail and the last
-// linear solve (its reason, Krylov iterations, the residual reduction reached against the
-// one asked, the AMG operator complexity and GMRES's conditioning estimate where there are).
 // The cell's metrics.toml (none when its run wrote none).
 std::optional<toml::table> cell_metrics(const std::string& out_dir, const Row& r) {
   try {
@@ -49,6 +46,10 @@ std::optional<toml::table> cell_metrics(const std::string& out_dir, const Row& r
   }
 }
 
+// Why a cell failed, from its run's metrics.toml: the Newton verdict's detail and the last
+// linear solve (its reason, Krylov iterations, the residual reduction reached against the
+// one asked, the AMG operator complexity, GMRES's conditioning estimate and MUMPS's pivoting
+// where there are).
 std::string why_it_failed(const std::string& out_dir, const Row& r) {
   std::string why = r.at("detail").empty() ? r.at("reason") : r.at("reason") + ": " + r.at("detail");
   const std::optional<toml::table> metrics = cell_metrics(out_dir, r);
@@ -70,6 +71,13 @@ std::string why_it_failed(const std::string& out_dir, const Row& r) {
     why += fmt::format(", preconditioned operator's condition estimate {:.1e} (singular values {:.1e} / {:.1e} from "
                        "GMRES's last cycle)",
                        *sigma_max / *sigma_min, *sigma_max, *sigma_min);
+  for (const std::string prefix : {"", "ll_"}) {
+    const auto delayed = last[prefix + "mumps_delayed_pivots"].value<double>(),
+               off_diagonal = last[prefix + "mumps_off_diagonal_pivots"].value<double>();
+    if (delayed && off_diagonal)
+      why += fmt::format(", MUMPS{} delayed {:.0f} pivots and chose {:.0f} off the diagonal", prefix.empty() ? "" : " (A_ll)",
+                         *delayed, *off_diagonal);
+  }
   return why;
 }
 

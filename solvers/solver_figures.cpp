@@ -33,6 +33,12 @@ void add_mumps_figures(KSP ksp, const std::string& key_prefix, std::map<std::str
   if (!MatMumpsGetInfog(F, 29, &stored) && !MatMumpsGetInfog(F, 35, &compressed))
     extra[key_prefix + "mumps_factor_entries"] = entries(compressed != 0 ? compressed : stored);
   if (!MatMumpsGetInfog(F, 20, &full_rank)) extra[key_prefix + "mumps_factor_entries_full_rank"] = entries(full_rank);
+  // Numerical pivoting: a pivot below the threshold CNTL(1) of its column is chosen off the
+  // diagonal within its front (INFOG(12)) or, where no fully summed row will do, delayed to
+  // the parent front (INFOG(13)), which grows the fronts and the factors past the analysis.
+  PetscInt off_diagonal = 0, delayed = 0;
+  if (!MatMumpsGetInfog(F, 12, &off_diagonal)) extra[key_prefix + "mumps_off_diagonal_pivots"] = static_cast<double>(off_diagonal);
+  if (!MatMumpsGetInfog(F, 13, &delayed)) extra[key_prefix + "mumps_delayed_pivots"] = static_cast<double>(delayed);
 }
 
 double mg_operator_complexity(KSP ksp) {

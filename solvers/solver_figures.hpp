@@ -11,7 +11,9 @@ namespace stiction::solvers {
 // INFOG(22) memory effectively used (MB), INFOG(7) ordering used, RINFOG(3) flops, and the
 // entries of the factors, as stored (INFOG(35), after block low-rank compression; INFOG(29)
 // where that is not reported) and as the analysis estimated them at full rank (INFOG(20)):
-// their ratio is the BLR compression rate, the full-rank count the fill of the ordering.
+// their ratio is the BLR compression rate, the full-rank count the fill of the ordering;
+// and how hard pivoting was: pivots chosen off the diagonal (INFOG(12)) and delayed to a
+// parent front (INFOG(13)), MUMPS's stand-in for the pivot growth it does not report.
 // Keys get `key_prefix` ("" or "ll_"). Does nothing for other PCs.
 void add_mumps_figures(KSP ksp, const std::string& key_prefix, std::map<std::string, double>& extra);
 // Operator complexity (sum of the levels' nonzeros over the finest level's) of a KSP whose

@@ -741,6 +741,8 @@ TEST_F(StictionCli, AtlasSweepsAPairOfKeysTogether) {
   EXPECT_NE(report.find("### lu-mumps: contact[0].friction (rows) x newton.max_iterations (columns)"), std::string::npos)
       << report;
   EXPECT_TRUE(fs::exists(dir_ / "pair" / "atlas-axis-0.svg") || report.find("Heat map not drawn") != std::string::npos);
+  // A failed lu-mumps cell names MUMPS's pivoting in its last solve (contact rows: delayed pivots).
+  EXPECT_NE(report.find("MUMPS delayed"), std::string::npos) << report;
 
   const CliRun same_key = CliRun::of({"atlas", "hertz-cylinder-2d", "--pair", "contact[0].friction=0,1",
                                       "contact[0].friction=2", "--out", "bad"},
@@ -886,6 +888,30 @@ TEST_F(StictionCli, MumpsMemoryEstimateIsThatOfTheFactorisationThatRuns) {
   ASSERT_GT(used, 100.0);
   EXPECT_GE(estimate, used);
   EXPECT_LE(estimate, 1.5 * used);
+}
+
+// MUMPS's pivoting in every lu-mumps solve's record: the multiplier rows of a contact system
+// (zero diagonal) have pivots delayed to a parent front (sliding-block-2d --quick: 19-22
+// per solve once contact is active), the cantilever's elasticity has none.
+TEST_F(StictionCli, MumpsPivotingIsRecordedAndDelaysPivotsOnlyWhereContactRowsAre) {
+  const auto largest_delay = [&](const std::string& scene) {
+    const fs::path metrics = dir_ / (scene + ".toml");
+    const CliRun run = solve(scene, {"--solver", "lu-mumps", "--quick", "--no-vtu", "--metrics", metrics.string()});
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    const toml::table record = toml::parse_file(metrics.string());
+    const toml::array* solves = record["linear_solve"].as_array();
+    double largest = -1;
+    if (!solves) return largest;
+    for (const auto& s : *solves) {
+      const auto* t = s.as_table();
+      if (!t || !(*t)["mumps_delayed_pivots"].value<double>() || !(*t)["mumps_off_diagonal_pivots"].value<double>())
+        return -1.0;  // a solve without the figures
+      largest = std::max(largest, *(*t)["mumps_delayed_pivots"].value<double>());
+    }
+    return largest;
+  };
+  EXPECT_GT(largest_delay("sliding-block-2d"), 0);
+  EXPECT_EQ(largest_delay("cantilever-2d"), 0);
 }
 
 // The block with strips' schedules and geometry, broken one at a time: one clear message
