@@ -7,6 +7,7 @@
 
 #include "common/error.hpp"
 #include "field_sets.hpp"
+#include "multiplier_schur_parts.hpp"
 #include "solver_figures.hpp"
 
 namespace stiction::solvers {
@@ -150,9 +151,9 @@ double ContactPreconditioner::smooth_mode_compliance(Mat M, Mat mass) const {
   return denominator > 0 && -numerator > 0 ? -numerator / denominator : 0.0;
 }
 
-void ContactPreconditioner::setup(Mat M, IS multipliers, Mat schur_mass, Mat schur_stiffness, Mat schur_slip,
+void ContactPreconditioner::setup(Mat M, IS multipliers, const nonlinear::MultiplierSurface& surface,
                                   const ShellPreconditioner& inner) {
-  if (!schur_mass) throw Error("contact preconditioner: the system has no multiplier mass", ErrorKind::Internal);
+  const MultiplierSchurParts parts = form_multiplier_schur_parts(surface);
   inner_ = &inner;
   STICTION_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(multipliers)));
   *is_l_.out() = multipliers;
@@ -161,14 +162,14 @@ void ContactPreconditioner::setup(Mat M, IS multipliers, Mat schur_mass, Mat sch
   STICTION_PETSC(MatCreateSubMatrix(M, is_a_, is_l_, MAT_INITIAL_MATRIX, B1_.out()));
   STICTION_PETSC(MatCreateSubMatrix(M, is_l_, is_a_, MAT_INITIAL_MATRIX, B2_.out()));
   STICTION_PETSC(MatCreateSubMatrix(M, is_l_, is_l_, MAT_INITIAL_MATRIX, D_.out()));
-  scale_ = scale_from_options(M, schur_mass);
+  scale_ = scale_from_options(M, parts.mass);
   factorisation_ = factorisation_from_options();
   STICTION_PETSC(MatDuplicate(D_, MAT_COPY_VALUES, S_.out()));
-  if (PetscMat G = fractional_from_options(schur_mass, schur_stiffness); G)
+  if (PetscMat G = fractional_from_options(parts.mass, parts.laplacian); G)
     STICTION_PETSC(MatAXPY(S_, 1.0, G, DIFFERENT_NONZERO_PATTERN));
   else
-    STICTION_PETSC(MatAXPY(S_, scale_, schur_mass, DIFFERENT_NONZERO_PATTERN));
-  if (schur_slip) STICTION_PETSC(MatAXPY(S_, scale_, schur_slip, DIFFERENT_NONZERO_PATTERN));
+    STICTION_PETSC(MatAXPY(S_, scale_, parts.mass, DIFFERENT_NONZERO_PATTERN));
+  if (parts.slip_coupling) STICTION_PETSC(MatAXPY(S_, scale_, parts.slip_coupling, DIFFERENT_NONZERO_PATTERN));
   // PETSc 3.18's LU with inodes and a fill-reducing ordering (nd, rcm) met a zero pivot and
   // NaNs on the fractional model's dense block of a symmetric positive definite S~
   // (sliding-block-2d, level 0): without inodes, or in natural order, it factors.

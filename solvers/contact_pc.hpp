@@ -63,6 +63,7 @@
 
 #include "fractional_schur.hpp"
 #include "hierarchical_pc.hpp"
+#include "nonlinear/newton_system.hpp"
 
 namespace stiction::solvers {
 
@@ -72,11 +73,9 @@ public:
 
   // M: the whole contact system; inner must already be set up on it (it reads and writes
   // only the non-multiplier blocks of full-length vectors).
-  // schur_stiffness (Pi K Pi) is read by the fractional model only; it may be null.
-  // schur_slip (MultiplierConstraint::schur_slip_coupling) enters S~ scaled like the mass; it
-  // may be null.
-  void setup(Mat M, IS multipliers, Mat schur_mass, Mat schur_stiffness, Mat schur_slip,
-             const ShellPreconditioner& inner);
+  // G is formed from the multiplier surface (multiplier_schur_parts.hpp): Pi M Pi, Pi K Pi
+  // for the fractional model, and the slip rows' coupling, scaled like the mass.
+  void setup(Mat M, IS multipliers, const nonlinear::MultiplierSurface& surface, const ShellPreconditioner& inner);
   void apply(Vec r, Vec x) const override;
 
   // Replaces S~ (e.g. the exact S_g in tests); after setup().

@@ -14,9 +14,15 @@ MixedPreconditioner::MixedPreconditioner(MPI_Comm comm, const std::string& prefi
   STICTION_PETSC(KSPSetOptionsPrefix(ksp_pp_, (prefix + "pp_").c_str()));
 }
 
-void MixedPreconditioner::setup(Mat A, IS displacement, IS pressure, Mat pressure_mass, double alpha) {
-  if (!pressure_mass || !(alpha < 0))
-    throw Error("MHP (11) needs the pressure mass matrix and alpha < 0 from a mixed law", ErrorKind::Internal);
+double MixedPreconditioner::pressure_schur_scale(double shear_modulus, double bulk_modulus) {
+  return -(1 / shear_modulus + 1 / bulk_modulus);
+}
+
+void MixedPreconditioner::setup(Mat A, IS displacement, IS pressure, Mat pressure_mass, double shear_modulus,
+                                double bulk_modulus) {
+  if (!pressure_mass || !(shear_modulus > 0) || !(bulk_modulus > 0))
+    throw Error("MHP (11) needs the pressure mass matrix and the moduli of a mixed law", ErrorKind::Internal);
+  const double alpha = pressure_schur_scale(shear_modulus, bulk_modulus);
   if (!is_u_) {
     STICTION_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(pressure)));
     *is_p_.out() = pressure;

@@ -21,8 +21,11 @@ public:
   MixedPreconditioner(MPI_Comm comm, const std::string& prefix, const HierarchicalPreconditioner& hp);
 
   // A: the whole mixed matrix; HP must already be set up on it. S~ = alpha M_p, M_p in the
-  // pressure block's numbering (rows in the order of `pressure`, process by process).
-  void setup(Mat A, IS displacement, IS pressure, Mat pressure_mass, double alpha);
+  // pressure block's numbering (rows in the order of `pressure`, process by process), alpha
+  // from the mixed law's moduli (pressure_schur_scale).
+  void setup(Mat A, IS displacement, IS pressure, Mat pressure_mass, double shear_modulus, double bulk_modulus);
+  // alpha of (11): -(1/mu10 + 1/kappa), the sign of S_p.
+  static double pressure_schur_scale(double shear_modulus, double bulk_modulus);
   void apply(Vec r, Vec x) const override;
 
   void set_form(SchurForm form) { form_ = form; }  // Upper (default) or Full

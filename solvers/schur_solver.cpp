@@ -36,15 +36,14 @@ void SchurSolver::configure(const nonlinear::NewtonSystem& system) {
   if (pressure) {
     if (!mhp_) mhp_ = std::make_unique<MixedPreconditioner>(system.comm, options_prefix(this->name()), hp_);
     if (!displacement_) displacement_ = union_of_fields(system, {"u_l", "u_q"});
-    mhp_->setup(system.matrix, displacement_, pressure->is, system.pressure_mass, system.pressure_schur_scale);
+    mhp_->setup(system.matrix, displacement_, pressure->is, system.pressure_mass, system.mixed_shear_modulus,
+                system.mixed_bulk_modulus);
     inner = mhp_.get();
     name = "MHP (11): alpha M_p on p (pp_ solver), then HP (10) on u (ll_ and qq_ solvers)";
   }
   if (const auto* lambda = system.field("lambda")) {
     if (!contact_) contact_ = std::make_unique<ContactPreconditioner>(system.comm, options_prefix(this->name()));
-    contact_->setup(system.matrix, lambda->is, system.multiplier_schur_mass, system.multiplier_schur_stiffness,
-                    system.multiplier_schur_slip,
-                    *inner);
+    contact_->setup(system.matrix, lambda->is, system.multiplier_surface, *inner);
     inner = contact_.get();
     name = "global Schur level (33) (factors: contact_fact) with " + std::string(pressure ? "MHP (11)" : "HP (10)") +
            " for A^-1 and S~ = D + G (G: contact_schur, fractional or the mass (32)) by the ss_ solver";

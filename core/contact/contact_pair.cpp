@@ -335,50 +335,26 @@ std::vector<char> ContactPair::states() const {
   return s;
 }
 
-void ContactPair::add_projected(const std::vector<int>& rows, const std::vector<int>& cols,
-                                const std::vector<double>& values, nonlinear::SparseEntries& out,
-                                PetscInt offset) const {
+void ContactPair::describe_surface(nonlinear::MultiplierSurfaceEntries& out, PetscInt offset) const {
   const int d = dim_;
-  // Pi_i: the identity at a sticking node, n_i n_i^T at a slipping node.
-  auto projector = [&](int i) -> Mat3 {
-    return state_[i] == NodeState::Stick ? Mat3::Identity() : Mat3(normals_[i] * normals_[i].transpose());
+  auto add_per_component = [&](const std::vector<int>& rows, const std::vector<int>& cols,
+                               const std::vector<double>& values, nonlinear::SparseEntries& to) {
+    for (size_t k = 0; k < values.size(); ++k)
+      for (int c = 0; c < d; ++c) to.add(offset + rows[k] * d + c, offset + cols[k] * d + c, values[k]);
   };
-  for (size_t k = 0; k < values.size(); ++k) {
-    const int i = rows[k], j = cols[k];
-    if (state_[i] == NodeState::Inactive || state_[j] == NodeState::Inactive) continue;
-    const Mat3 P = projector(i) * projector(j);
+  add_per_component(slave_.mass_i, slave_.mass_j, slave_.mass_v, out.mass);
+  add_per_component(slave_.stiffness_i, slave_.stiffness_j, slave_.stiffness_v, out.laplacian);
+  auto add_block = [&](int i, const Mat3& block, nonlinear::SparseEntries& to) {
     for (int c = 0; c < d; ++c)
       for (int e = 0; e < d; ++e)
-        if (P(c, e) != 0) out.add(offset + i * d + c, offset + j * d + e, values[k] * P(c, e));
-  }
-}
-
-void ContactPair::schur_mass(nonlinear::SparseEntries& out, PetscInt offset) const {
-  add_projected(slave_.mass_i, slave_.mass_j, slave_.mass_v, out, offset);
-}
-
-void ContactPair::schur_stiffness(nonlinear::SparseEntries& out, PetscInt offset) const {
-  add_projected(slave_.stiffness_i, slave_.stiffness_j, slave_.stiffness_v, out, offset);
-}
-
-// The slip rows' coupling: a slipping node's tangential row depends on u through its slip
-// S_i = B_i u (19), so the Schur complement's row i holds dc_i/dS_i (B A^-1 B^T)_ij, which
-// Pi M Pi (Pi_i = n n^T there) leaves out. In 3D that row's multiplier block loses the
-// direction t2 orthogonal to n and the slip direction a^ when |lambda_t| = mu lambda_n and
-// g_t = 0, as at the start of every increment of a self-contact pair whose nodes slipped
-// in the last one (nothing has moved yet): the approximation's t2 row is then zero and its
-// LU breaks down (block-strips with 0.5 mm grooves, schur-amg, step 8: DIVERGED_NANORINF
-// at the first solve). Approximated like the rest of (32), with B A^-1 B^T ~ s M: rows
-// dc_i/dS_i M_ij over the constrained nodes j (columns unprojected: B^T acts on every
-// component of lambda_j).
-void ContactPair::schur_slip_coupling(nonlinear::SparseEntries& out, PetscInt offset) const {
-  const int d = dim_;
-  for (size_t k = 0; k < slave_.mass_v.size(); ++k) {
-    const int i = slave_.mass_i[k], j = slave_.mass_j[k];
-    if (state_[i] != NodeState::Slip || state_[j] == NodeState::Inactive || slip_rows_[i].isZero(0.0)) continue;
-    for (int c = 0; c < d; ++c)
-      for (int e = 0; e < d; ++e)
-        if (slip_rows_[i](c, e) != 0) out.add(offset + i * d + c, offset + j * d + e, slave_.mass_v[k] * slip_rows_[i](c, e));
+        if (block(c, e) != 0) to.add(offset + i * d + c, offset + i * d + e, block(c, e));
+  };
+  for (int i = 0; i < slave_.n_nodes(); ++i) {
+    if (state_[i] == NodeState::Inactive) continue;
+    const Vec3& n = normals_[i];
+    add_block(i, state_[i] == NodeState::Stick ? Mat3::Identity() : Mat3(n * n.transpose()), out.projector);
+    add_block(i, Mat3::Identity(), out.constrained);
+    if (state_[i] == NodeState::Slip) add_block(i, slip_rows_[i], out.slip_rows);
   }
 }
 

@@ -97,9 +97,7 @@ public:
   void states_held(const double* lambda, const double* dlambda) override;
   std::vector<char> states() const override;
   void distribute(MPI_Comm comm, const std::vector<char>& owned) override;
-  void schur_mass(nonlinear::SparseEntries& out, PetscInt offset) const override;
-  void schur_stiffness(nonlinear::SparseEntries& out, PetscInt offset) const override;
-  void schur_slip_coupling(nonlinear::SparseEntries& out, PetscInt offset) const override;
+  void describe_surface(nonlinear::MultiplierSurfaceEntries& out, PetscInt offset) const override;
   nonlinear::ConstraintSummary summary(const double* lambda) const override;
   std::vector<nonlinear::MultiplierNode> nodes(double t, const std::vector<double>& u,
                                               const double* lambda) const override;
@@ -176,9 +174,6 @@ private:
   // Writes r_c (and, with jacobian, the owned rows of C_u and C_l) from the nodes' kinematics.
   void write_rows(double t, const std::vector<NodeKinematics>& nodes, const double* lambda, double* r_c,
                   nonlinear::SparseEntries* jacobian, PetscInt offset) const;
-  // Pi X Pi of a slave-surface matrix X given as (row, column, value) entries.
-  void add_projected(const std::vector<int>& rows, const std::vector<int>& cols, const std::vector<double>& values,
-                     nonlinear::SparseEntries& out, PetscInt offset) const;
 
   std::string name_;
   MPI_Comm comm_ = MPI_COMM_SELF;
@@ -188,7 +183,7 @@ private:
   std::vector<NodeState> state_;
   std::vector<double> r_t_;
   std::vector<Vec3> last_dlambda_t_;
-  // Normals at the last iterate evaluated with its Jacobian (for schur_mass and schur_stiffness, which the
+  // Normals at the last iterate evaluated with its Jacobian (for describe_surface, which the
   // Newton driver calls right after assembling that Jacobian) or updated on.
   mutable std::vector<Vec3> normals_;
   // d c_i / d S_i of every slipping node's row at that iterate (zero elsewhere).

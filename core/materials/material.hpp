@@ -35,8 +35,9 @@ public:
   // return their bulk modulus kappa > 0 here; energy, stress and tangent then describe
   // the isochoric part only, and the assembly adds -p J F^-T and the pressure equation.
   virtual double mixed_bulk_modulus() const { return 0; }
-  // alpha of MHP (11): the pressure Schur complement is approximated by alpha M_p.
-  virtual double pressure_schur_scale() const { return 0; }
+  // Mixed laws: the modulus of the isochoric part (mu10 for Mooney-Rivlin), the one the
+  // paper's MHP (11) scales the pressure Schur complement by.
+  virtual double mixed_shear_modulus() const { return 0; }
   // Small-strain Young's modulus: the stiffness scale of contact penalties and heuristics.
   virtual double reference_modulus() const = 0;
 };
@@ -98,7 +99,7 @@ public:
   Mat3 first_piola(const Mat3& F) const override;
   void first_piola_and_tangent(const Mat3& F, Mat3& P, Tangent& A) const override;
   double mixed_bulk_modulus() const override { return form_ == Form::Mixed ? kappa_ : 0.0; }
-  double pressure_schur_scale() const override { return -(1 / mu10_ + 1 / kappa_); }  // (11)
+  double mixed_shear_modulus() const override { return form_ == Form::Mixed ? mu10_ : 0.0; }
   // Incompressible limit: shear modulus 2 (mu10 + mu01), E = 3 mu.
   double reference_modulus() const override { return 6 * (mu10_ + mu01_); }
 

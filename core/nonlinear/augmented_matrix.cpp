@@ -293,23 +293,25 @@ Mat build_distributed_augmented_matrix(Mat tangent, const fem::DofLayout& layout
   return A;
 }
 
-Mat build_sparse_matrix(MPI_Comm comm, PetscInt m, const SparseEntries& entries) {
-  CompressedRows e = compress(m, entries, 0);
+Mat build_sparse_matrix(MPI_Comm comm, PetscInt m, const SparseEntries& entries, Diagonal diagonal) {
+  CompressedRows e = compress(m, entries, diagonal == Diagonal::Keep ? 0 : m);
   return seq_aij_over(comm, m,
                       {std::make_shared<const std::vector<PetscInt>>(std::move(e.start)),
                        std::make_shared<const std::vector<PetscInt>>(std::move(e.cols)),
                        std::make_shared<std::vector<PetscScalar>>(std::move(e.values))});
 }
 
-Mat build_block_matrix(const fem::DofLayout& layout, PetscInt first, PetscInt m, const SparseEntries& entries) {
-  if (layout.identity()) return build_sparse_matrix(layout.comm(), m, entries);
+Mat build_block_matrix(const fem::DofLayout& layout, PetscInt first, PetscInt m, const SparseEntries& entries,
+                       Diagonal diagonal) {
+  if (layout.identity()) return build_sparse_matrix(layout.comm(), m, entries, diagonal);
   const std::vector<PetscInt> number = layout.block_numbering(first, first + m);
   // This rank's rows of the block are consecutive in its numbering: [row_first, row_first + n_owned).
   PetscInt n_owned = 0, row_first = m;
   for (PetscInt k = 0; k < m; ++k)
     if (layout.owns(first + k)) ++n_owned, row_first = std::min(row_first, number[static_cast<size_t>(k)]);
   // Preallocation counts duplicates (an upper bound), capped by the row's room.
-  std::vector<PetscInt> d_nnz(static_cast<size_t>(n_owned), 1), o_nnz(static_cast<size_t>(n_owned), 0);
+  const PetscInt with_diagonal = diagonal == Diagonal::Keep ? 1 : 0;
+  std::vector<PetscInt> d_nnz(static_cast<size_t>(n_owned), with_diagonal), o_nnz(static_cast<size_t>(n_owned), 0);
   for (size_t e = 0; e < entries.size(); ++e) {
     if (!layout.owns(first + entries.rows[e])) continue;
     const PetscInt r = number[static_cast<size_t>(entries.rows[e])] - row_first;
@@ -323,7 +325,7 @@ Mat build_block_matrix(const fem::DofLayout& layout, PetscInt first, PetscInt m,
   Mat M;
   STICTION_PETSC(MatCreateAIJ(layout.comm(), n_owned, n_owned, m, m, 0, d_nnz.data(), 0, o_nnz.data(), &M));
   const PetscScalar zero = 0;
-  for (PetscInt r = row_first; r < row_first + n_owned; ++r)
+  for (PetscInt r = row_first; with_diagonal && r < row_first + n_owned; ++r)
     STICTION_PETSC(MatSetValues(M, 1, &r, 1, &r, &zero, ADD_VALUES));
   for (size_t e = 0; e < entries.size(); ++e) {
     if (!layout.owns(first + entries.rows[e])) continue;

@@ -30,13 +30,15 @@ Mat build_augmented_matrix(MPI_Comm comm, CsrArrays tangent, PetscInt m, const S
 Mat build_distributed_augmented_matrix(Mat tangent, const fem::DofLayout& layout, PetscInt n_u,
                                        const SparseEntries& extra, PetscInt block_size);
 
-// A sparse m x m matrix from entries whose indices are already in [0, m); every row has
-// its diagonal (possibly zero).
-Mat build_sparse_matrix(MPI_Comm comm, PetscInt m, const SparseEntries& entries);
+// A sparse m x m matrix from entries whose indices are already in [0, m); with Keep every
+// row has its diagonal (possibly zero), with Omit the pattern is the entries' alone.
+enum class Diagonal { Keep, Omit };
+Mat build_sparse_matrix(MPI_Comm comm, PetscInt m, const SparseEntries& entries, Diagonal diagonal = Diagonal::Keep);
 
 // The same over the layout's unknowns [first, first + m) (the multipliers), distributed in
 // that block's numbering (DofLayout::block_numbering): entries indexed in [0, m), the same
 // on every rank, each rank inserting the rows it owns. On one rank build_sparse_matrix.
-Mat build_block_matrix(const fem::DofLayout& layout, PetscInt first, PetscInt m, const SparseEntries& entries);
+Mat build_block_matrix(const fem::DofLayout& layout, PetscInt first, PetscInt m, const SparseEntries& entries,
+                       Diagonal diagonal = Diagonal::Keep);
 
 }  // namespace stiction::nonlinear

@@ -75,13 +75,10 @@ bool ConstraintSet::all_free() const {
   return std::all_of(s.begin(), s.end(), [](char c) { return c == MultiplierConstraint::kFreeState; });
 }
 
-void ConstraintSet::schur_parts(SparseEntries& mass, SparseEntries& surface_stiffness,
-                                SparseEntries& slip_coupling) const {
-  for (size_t k = 0; k < constraints_.size(); ++k) {
-    constraints_[k]->schur_mass(mass, offset_[k]);
-    constraints_[k]->schur_stiffness(surface_stiffness, offset_[k]);
-    constraints_[k]->schur_slip_coupling(slip_coupling, offset_[k]);
-  }
+MultiplierSurfaceEntries ConstraintSet::describe_surface() const {
+  MultiplierSurfaceEntries surface;
+  for (size_t k = 0; k < constraints_.size(); ++k) constraints_[k]->describe_surface(surface, offset_[k]);
+  return surface;
 }
 
 std::vector<ConstraintSummary> ConstraintSet::summaries(const std::vector<double>& lambda) const {

@@ -41,8 +41,8 @@ public:
   // Every constraint's states, concatenated in order.
   std::vector<char> states() const;
   bool all_free() const;
-  // The Schur approximation's parts (32) on the multiplier block's numbering [0, m).
-  void schur_parts(SparseEntries& mass, SparseEntries& surface_stiffness, SparseEntries& slip_coupling) const;
+  // Every constraint's multiplier surface, on the multiplier block's numbering [0, m).
+  MultiplierSurfaceEntries describe_surface() const;
 
   std::vector<ConstraintSummary> summaries(const std::vector<double>& lambda) const;
   std::vector<std::vector<double>> save_state() const;

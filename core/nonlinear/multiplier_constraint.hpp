@@ -31,6 +31,21 @@ struct SparseEntries {
   void clear() { rows.clear(), cols.clear(), values.clear(); }
 };
 
+// What a constraint tells a preconditioner of its multipliers, in their numbering. The
+// solver side forms the paper's Schur approximation (32) from it (solvers/multiplier_schur_parts).
+//   mass         M_lambda, the slave surface's mass matrix (alike on each node's components);
+//   laplacian    K = int grad_s phi_i . grad_s phi_j on the same surface, likewise;
+//   projector    Pi, block-diagonal: the directions each node's state constrains (all of a
+//                sticking node, its normal n n^T when slipping, none when inactive);
+//   constrained  the identity on the nodes that carry a constraint (not the inactive ones);
+//   slip_rows    block-diagonal: dc_i/dS_i where a constrained row depends on the
+//                displacement through more than Pi (a slipping node's tangential row through
+//                its slip S_i, (19)); zero elsewhere.
+// Only non-zero entries are listed, so the zero blocks stay out of the matrices' patterns.
+struct MultiplierSurfaceEntries {
+  SparseEntries mass, laplacian, projector, constrained, slip_rows;
+};
+
 // What one constraint reports per load step.
 struct ConstraintSummary {
   std::string name;
@@ -89,17 +104,9 @@ public:
   // predictor); kFreeState marks a node that carries no constraint (inactive).
   static constexpr char kFreeState = 0;
   virtual std::vector<char> states() const = 0;
-  // The mass-matrix part of the Schur approximation (32), Pi M_lambda Pi: Pi projects on the
-  // constrained directions (all of them at sticking nodes, the normal at slipping nodes,
-  // none at inactive nodes). Multiplier k is row/column `offset + k`.
-  virtual void schur_mass(SparseEntries& out, PetscInt offset) const = 0;
-  // The same projection of the surface Laplacian, Pi K Pi (K = int grad_s phi_i . grad_s
-  // phi_j): with Pi M Pi it spans the fractional Schur model of the contact preconditioner.
-  virtual void schur_stiffness(SparseEntries& out, PetscInt offset) const = 0;
-  // Where a constrained row depends on the displacement through more than Pi (a slipping
-  // node's tangential row through its slip, (19)), that dependence times M_lambda:
-  // sum_j dc_i/dS_i M_ij over the constrained nodes j. Empty by default.
-  virtual void schur_slip_coupling(SparseEntries& out, PetscInt offset) const {}
+  // The multiplier surface as a preconditioner needs it (MultiplierSurfaceEntries), at the
+  // last iterate evaluated with its Jacobian; multiplier k is row/column `offset + k`.
+  virtual void describe_surface(MultiplierSurfaceEntries& out, PetscInt offset) const = 0;
   virtual ConstraintSummary summary(const double* lambda) const = 0;
   // Everything besides the multipliers that a converged state carries into the next
   // increment (the contact states), to retry a failed increment from it.

@@ -16,6 +16,11 @@ struct FieldBlock {
   int block_size = 1;
 };
 
+// The matrices of MultiplierSurfaceEntries (multiplier_constraint.hpp).
+struct MultiplierSurface {
+  PetscMat mass, laplacian, projector, constrained, slip_rows;
+};
+
 struct NewtonSystem {
   MPI_Comm comm = PETSC_COMM_WORLD;
   PetscMat matrix;
@@ -24,14 +29,12 @@ struct NewtonSystem {
   PetscNullSpace near_null_space;  // rigid-body modes of the displacement (also on matrix)
   int block_size = 1;
   // Mixed (u-p) systems only: the P1 pressure mass matrix M_p (on the p block's numbering)
-  // and alpha of MHP (11), so a preconditioner can use S_p ~ alpha M_p.
+  // and the moduli of the mixed law, from which MHP (11) approximates S_p.
   PetscMat pressure_mass;
-  double pressure_schur_scale = 0;
-  // Contact systems only: the mass-matrix part Pi M_lambda Pi of the Schur approximation
-  // (32) on the lambda block's numbering (see MultiplierConstraint::schur_mass).
-  PetscMat multiplier_schur_mass;
-  PetscMat multiplier_schur_stiffness;  // Pi K Pi likewise (MultiplierConstraint::schur_stiffness)
-  PetscMat multiplier_schur_slip;       // MultiplierConstraint::schur_slip_coupling
+  double mixed_shear_modulus = 0, mixed_bulk_modulus = 0;
+  // Contact systems only: the multiplier surface (MultiplierSurfaceEntries) on the lambda
+  // block's numbering, from which the contact preconditioner forms its Schur approximation.
+  MultiplierSurface multiplier_surface;
 
   const FieldBlock* field(const std::string& name) const {
     for (const auto& f : fields)

@@ -83,10 +83,11 @@ NewtonSystemBuilder::NewtonSystemBuilder(const fem::DofLayout& layout, const Ela
   if (n_multipliers > 0) add_field("lambda", {space.n_dofs(), static_cast<int>(n_total)}, space.dim());
   if (space.has_pressure()) {
     *system_.pressure_mass.out() = fem::assemble_pressure_mass(layout, space);
-    // alpha of MHP (11) from the (first) mixed law; the paper's scenes have one rubber body.
+    // The moduli of the (first) mixed law; the paper's scenes have one rubber body.
     for (const auto* m : problem.cell_material)
       if (m->mixed_bulk_modulus() > 0) {
-        system_.pressure_schur_scale = m->pressure_schur_scale();
+        system_.mixed_shear_modulus = m->mixed_shear_modulus();
+        system_.mixed_bulk_modulus = m->mixed_bulk_modulus();
         break;
       }
   }
@@ -124,11 +125,11 @@ void NewtonSystemBuilder::assemble(double t, const std::vector<double>& u, const
 }
 
 // The augmented matrix (30): the tangent bordered by -B^T, C_u and C_lambda, and the
-// multiplier block's Schur parts (32).
+// multiplier surface the contact preconditioner reads.
 void NewtonSystemBuilder::border_with_constraints(double t, const std::vector<double>& u,
                                                   const std::vector<double>& lambda, const ConstraintSet& constraints) {
   const PetscInt n_u = problem_.space->n_dofs(), m = constraints.n_multipliers();
-  SparseEntries blocks, mass, surface_stiffness, slip_coupling;
+  SparseEntries blocks;
   std::vector<double> scratch_u(n_u), scratch_c;
   constraints.evaluate(t, u, lambda, scratch_u, scratch_c, &blocks, n_u);
   if (stiffness_->distributed())
@@ -138,10 +139,13 @@ void NewtonSystemBuilder::border_with_constraints(double t, const std::vector<do
     *system_.matrix.out() = build_augmented_matrix(system_.comm, stiffness_->take_arrays(), m, blocks,
                                                    stiffness_->block_size());
   STICTION_PETSC(MatSetNearNullSpace(system_.matrix, system_.near_null_space));
-  constraints.schur_parts(mass, surface_stiffness, slip_coupling);
-  *system_.multiplier_schur_mass.out() = build_block_matrix(layout_, n_u, m, mass);
-  *system_.multiplier_schur_stiffness.out() = build_block_matrix(layout_, n_u, m, surface_stiffness);
-  *system_.multiplier_schur_slip.out() = build_block_matrix(layout_, n_u, m, slip_coupling);
+  const MultiplierSurfaceEntries surface = constraints.describe_surface();
+  MultiplierSurface& to = system_.multiplier_surface;
+  *to.mass.out() = build_block_matrix(layout_, n_u, m, surface.mass, Diagonal::Omit);
+  *to.laplacian.out() = build_block_matrix(layout_, n_u, m, surface.laplacian, Diagonal::Omit);
+  *to.projector.out() = build_block_matrix(layout_, n_u, m, surface.projector, Diagonal::Omit);
+  *to.constrained.out() = build_block_matrix(layout_, n_u, m, surface.constrained, Diagonal::Omit);
+  *to.slip_rows.out() = build_block_matrix(layout_, n_u, m, surface.slip_rows, Diagonal::Omit);
 }
 
 }  // namespace stiction::nonlinear

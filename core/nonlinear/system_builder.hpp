@@ -2,13 +2,14 @@
 // Writes each Newton system the backends solve: the tangent of the elastic residual, with
 // contact bordered into the augmented matrix (30), the right side -(r_u, r_c), the
 // Dirichlet lifting, the field index sets (u_l, u_q, p, lambda), the rigid-body near-null
-// space and, for the preconditioners that use them, the pressure mass matrix with alpha of
-// MHP (11) and the parts of the multiplier Schur approximation (32).
+// space and, for the preconditioners that use them, the pressure mass matrix with the mixed
+// law's moduli and the multiplier surface (mass, Laplacian, projectors, slip rows); the
+// preconditioners form their Schur approximations from these themselves.
 //
 // The system lives in the DofLayout's numbering: on one rank that is stiction's own, on
 // several the matrix and vectors are distributed, each rank assembles its own cells and
-// the rows of the contact blocks it owns. The preconditioner parts (pressure mass,
-// multiplier Schur parts) are distributed likewise, in their field's block numbering.
+// the rows of the contact blocks it owns. The preconditioner ingredients (pressure mass,
+// multiplier surface) are distributed likewise, in their field's block numbering.
 //
 // Without contact the tangent keeps one matrix over its pattern for the whole run; with
 // contact each system is a new matrix (the constraint blocks change pattern with the

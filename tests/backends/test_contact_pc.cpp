@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "contact_pc.hpp"
+#include "multiplier_schur_parts.hpp"
 #include "support/schur_helpers.hpp"
 
 namespace stiction::test {
@@ -35,7 +36,7 @@ TEST(ContactPreconditioner, ExactSubSolvesGiveTheExactInverse) {
   ExactHierarchical exact(sys, "test_cpc_hp_");
   set_options("test_cpc_", {{"ss_ksp_type", "preonly"}, {"ss_pc_type", "lu"}, {"contact_fact", "full"}});
   solvers::ContactPreconditioner cp(PETSC_COMM_WORLD, "test_cpc_");
-  cp.setup(sys.matrix, lambda->is, sys.multiplier_schur_mass, sys.multiplier_schur_stiffness, sys.multiplier_schur_slip, exact.hp);
+  cp.setup(sys.matrix, lambda->is, sys.multiplier_surface, exact.hp);
   // The automatic scale is the geometric mean of the element-end and body-end compliances,
   // and the body's smooth modes are far more compliant than one surface element.
   const auto estimates = cp.scale_estimates();
@@ -61,7 +62,7 @@ TEST(ContactPreconditioner, ExactSubSolvesGiveTheExactInverse) {
   // displacement part, as after a converged load step's last update).
   for (const char* fact : {"upper", "lower"}) {
     set_options("test_cpc_", {{"contact_fact", fact}});
-    cp.setup(sys.matrix, lambda->is, sys.multiplier_schur_mass, sys.multiplier_schur_stiffness, sys.multiplier_schur_slip, exact.hp);
+    cp.setup(sys.matrix, lambda->is, sys.multiplier_surface, exact.hp);
     cp.set_schur_operator(S);
     EXPECT_LE(gmres_iterations(sys, cp, &residual), 2) << fact;
     EXPECT_LT(residual, 1e-9) << fact;
@@ -82,6 +83,28 @@ Eigen::MatrixXd to_dense(Mat m) {
     MatRestoreRow(m, i, &n, &c, &v);
   }
   return d;
+}
+
+// The parts of (32) formed by sparse products on the surface matrices equal the dense
+// products Pi M Pi, Pi K Pi and (dc/dS) M A, on a system with sticking, slipping and
+// inactive nodes (cattaneo-mindlin-2d, level 0, the last system of the third load step:
+// a stick zone inside a slip annulus).
+TEST(MultiplierSchurParts, SparseProductsEqualTheDenseProjections) {
+  StepSystem step("cattaneo-mindlin-2d");
+  step.newton->solve_step(2);
+  step.newton->solve_step(3);
+  const nonlinear::MultiplierSurface& surface = step.system().multiplier_surface;
+  const solvers::MultiplierSchurParts parts = solvers::form_multiplier_schur_parts(surface);
+  const Eigen::MatrixXd M = to_dense(surface.mass), K = to_dense(surface.laplacian), P = to_dense(surface.projector);
+  const Eigen::MatrixXd slip = to_dense(surface.slip_rows), A = to_dense(surface.constrained);
+  ASSERT_GT(slip.cwiseAbs().sum(), 0);  // some node slips with friction
+  ASSERT_LT(A.trace(), A.rows());       // some node is inactive
+  const double tolerance = 1e-14;
+  EXPECT_LE((to_dense(parts.mass) - P * M * P).cwiseAbs().maxCoeff(), tolerance * M.cwiseAbs().maxCoeff());
+  EXPECT_LE((to_dense(parts.laplacian) - P * K * P).cwiseAbs().maxCoeff(), tolerance * K.cwiseAbs().maxCoeff());
+  const Eigen::MatrixXd coupling = slip * M * A;
+  EXPECT_LE((to_dense(parts.slip_coupling) - coupling).cwiseAbs().maxCoeff(),
+            tolerance * coupling.cwiseAbs().maxCoeff());
 }
 
 // max |mu| / min |mu| over the eigenvalues mu of S~^-1 S_g on the constrained rows: 1 for
@@ -106,8 +129,8 @@ TEST(ContactPreconditioner, FractionalModelFollowsTheSchurComplementBetterThanTh
   const auto* lambda = sys.field("lambda");
   ASSERT_NE(lambda, nullptr);
   ExactHierarchical exact(sys, "test_frac_hp_");
-  const Eigen::MatrixXd mass = to_dense(sys.multiplier_schur_mass);
-  std::vector<int> constrained;
+  const Eigen::MatrixXd mass = to_dense(solvers::form_multiplier_schur_parts(sys.multiplier_surface).mass);
+  std::vector<int> constrained;  // the constrained directions: Pi M Pi's non-zero diagonal
   for (Eigen::Index i = 0; i < mass.rows(); ++i)
     if (mass(i, i) > 0) constrained.push_back(static_cast<int>(i));
   ASSERT_GE(constrained.size(), 3u);
@@ -120,7 +143,7 @@ TEST(ContactPreconditioner, FractionalModelFollowsTheSchurComplementBetterThanTh
     const std::string prefix = std::string("test_frac_") + models[m] + "_";
     set_options(prefix, {{"ss_ksp_type", "preonly"}, {"ss_pc_type", "lu"}, {"contact_schur", models[m]}});
     solvers::ContactPreconditioner cp(PETSC_COMM_WORLD, prefix);
-    cp.setup(sys.matrix, lambda->is, sys.multiplier_schur_mass, sys.multiplier_schur_stiffness, sys.multiplier_schur_slip, exact.hp);
+    cp.setup(sys.matrix, lambda->is, sys.multiplier_surface, exact.hp);
     EXPECT_EQ(cp.fractional_fit().fitted, m == 1);
     iterations[m] = gmres_iterations(sys, cp, &residual);
     EXPECT_LT(residual, 1e-9);

@@ -27,7 +27,7 @@ int iterations_with_exact_blocks(SchurForm mixed_form, double* residual) {
   MixedPreconditioner mhp(PETSC_COMM_WORLD, prefix, exact.hp);
   mhp.set_form(mixed_form);
   mhp.setup(sys.matrix, union_of_fields(sys, {"u_l", "u_q"}), sys.field("p")->is, sys.pressure_mass,
-            sys.pressure_schur_scale);
+            sys.mixed_shear_modulus, sys.mixed_bulk_modulus);
   // Exact S_p = C - Bp A^-1 Bp^T with A the whole displacement block.
   IS is_u, is_p = sys.field("p")->is;
   PetscInt first;
@@ -68,7 +68,7 @@ TEST(MixedPreconditioner, PaperSettingsConverge) {
   hp.setup(sys.matrix, sys.field("u_l")->is, sys.field("u_q")->is, sys.near_null_space, 2);
   MixedPreconditioner mhp(PETSC_COMM_WORLD, "mhp_paper_", hp);
   mhp.setup(sys.matrix, union_of_fields(sys, {"u_l", "u_q"}), sys.field("p")->is, sys.pressure_mass,
-            sys.pressure_schur_scale);
+            sys.mixed_shear_modulus, sys.mixed_bulk_modulus);
   double residual;
   const int its = test::gmres_iterations(sys, mhp, &residual);
   EXPECT_LT(residual, 1e-10);

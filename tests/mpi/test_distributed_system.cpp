@@ -22,6 +22,7 @@
 #include "fem/mesh_partition.hpp"
 #include "nonlinear/constraint_set.hpp"
 #include "nonlinear/newton.hpp"
+#include "multiplier_schur_parts.hpp"
 #include "registry.hpp"
 
 namespace {
@@ -91,9 +92,11 @@ SystemProducts solve_recording(MPI_Comm comm, const std::string& name, const std
     std::vector<std::vector<double>> parts;
     const fem::FieldSpace& space = *scene->problem.space;
     if (sys.pressure_mass) parts.push_back(block_times(layout, sys.pressure_mass, space.pressure_block().first, x));
-    for (Mat part : {sys.multiplier_schur_mass.get(), sys.multiplier_schur_stiffness.get(),
-                     sys.multiplier_schur_slip.get()})
-      if (part) parts.push_back(block_times(layout, part, space.n_dofs(), x));
+    if (sys.multiplier_surface.mass) {  // the Schur parts as the contact preconditioner forms them
+      const solvers::MultiplierSchurParts schur = solvers::form_multiplier_schur_parts(sys.multiplier_surface);
+      for (Mat part : {schur.mass.get(), schur.laplacian.get(), schur.slip_coupling.get()})
+        parts.push_back(block_times(layout, part, space.n_dofs(), x));
+    }
     out.parts_times_x.push_back(parts);
   });
   const auto steps = newton.run({}, 1, scene->problem.step_reaching(scene->quick_until));

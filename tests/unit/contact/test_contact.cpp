@@ -444,15 +444,21 @@ TEST(RigidPlaneContact, SlipCouplingKeepsTheSchurApproximationRegularOnTheCone) 
     l = ln * n + 0.4 * ln * lt;
     for (int c = 0; c < 3; ++c) lambda[3 * i + c] = l[c];
   }
-  nonlinear::SparseEntries J, mass, coupling;
+  nonlinear::SparseEntries J;
+  nonlinear::MultiplierSurfaceEntries surface;
   pair.evaluate(1, u, lambda.data(), ru, rc.data(), &J, n_u);
-  pair.schur_mass(mass, 0);
-  pair.schur_slip_coupling(coupling, 0);
-  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(n_l, n_l), M = D, C = D;
+  pair.describe_surface(surface, 0);
+  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(n_l, n_l);
   for (size_t k = 0; k < J.size(); ++k)
     if (J.rows[k] >= n_u && J.cols[k] >= n_u) D(J.rows[k] - n_u, J.cols[k] - n_u) += J.values[k];
-  for (size_t k = 0; k < mass.size(); ++k) M(mass.rows[k], mass.cols[k]) += mass.values[k];
-  for (size_t k = 0; k < coupling.size(); ++k) C(coupling.rows[k], coupling.cols[k]) += coupling.values[k];
+  auto dense = [&](const nonlinear::SparseEntries& e) {
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n_l, n_l);
+    for (size_t k = 0; k < e.size(); ++k) A(e.rows[k], e.cols[k]) += e.values[k];
+    return A;
+  };
+  const Eigen::MatrixXd mass = dense(surface.mass), P = dense(surface.projector);
+  // The parts of (32) as solvers/multiplier_schur_parts forms them.
+  const Eigen::MatrixXd M = P * mass * P, C = dense(surface.slip_rows) * mass * dense(surface.constrained);
   auto conditioning = [](const Eigen::MatrixXd& A) {
     const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(A).singularValues();
     return sv(sv.size() - 1) / sv(0);
