@@ -50,4 +50,11 @@ kappa='material[0].kappa=10,100,1000,10000,100000,1000000'
 atlas cook-membrane-2d-mixed cook-membrane-2d --solvers schur-amg,schur-gamg,fieldsplit-schur,lu-mumps --axis "$kappa"
 atlas cook-membrane-2d-displacement cook-membrane-2d --set 'material[0].formulation="displacement"' \
   --solvers schur-amg,schur-gamg,gamg,lu-mumps --axis "$kappa"
+# The paper's benchmark at level 0, its short version (pressing, then the first sliding load
+# step): the ground's friction coefficient in the sliding phase from 0 to 2 (the grooves keep
+# 0.3), and the sliding step from 0.75 mm to the whole 6 mm in one step (8 to 1 steps; with 8
+# the short version runs the two steps to t = 5).
+friction='contact[0].friction_table=[[0.0, 0.0], [4.0, 0.0]];[[0.0, 0.0], [4.0, 0.3]];[[0.0, 0.0], [4.0, 0.6]];[[0.0, 0.0], [4.0, 1.0]];[[0.0, 0.0], [4.0, 2.0]]'
+slide='load.phases=[{until = 4.0, steps = 4}, {until = 8.0, steps = 8}];[{until = 4.0, steps = 4}, {until = 8.0, steps = 4}];[{until = 4.0, steps = 4}, {until = 8.0, steps = 2}];[{until = 4.0, steps = 4}, {until = 8.0, steps = 1}]'
+atlas block-strips block-strips --quick --solvers schur-amg,schur-gamg,lu-mumps --axis "$friction" --axis "$slide"
 echo "atlas-report: wrote $out" >&2
