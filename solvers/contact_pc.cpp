@@ -169,7 +169,7 @@ void ContactPreconditioner::setup(Mat M, IS multipliers, const nonlinear::Multip
     STICTION_PETSC(MatAXPY(S_, 1.0, G, DIFFERENT_NONZERO_PATTERN));
   else
     STICTION_PETSC(MatAXPY(S_, scale_, parts.mass, DIFFERENT_NONZERO_PATTERN));
-  if (parts.slip_coupling) STICTION_PETSC(MatAXPY(S_, scale_, parts.slip_coupling, DIFFERENT_NONZERO_PATTERN));
+  STICTION_PETSC(MatAXPY(S_, scale_, parts.slip_coupling, DIFFERENT_NONZERO_PATTERN));
   // PETSc 3.18's LU with inodes and a fill-reducing ordering (nd, rcm) met a zero pivot and
   // NaNs on the fractional model's dense block of a symmetric positive definite S~
   // (sliding-block-2d, level 0): without inodes, or in natural order, it factors.

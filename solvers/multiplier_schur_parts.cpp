@@ -16,11 +16,11 @@ Mat projected(Mat X, Mat projector) {
 }  // namespace
 
 MultiplierSchurParts form_multiplier_schur_parts(const nonlinear::MultiplierSurface& surface) {
-  if (!surface.mass || !surface.projector)
+  if (!surface.mass || !surface.laplacian || !surface.projector || !surface.constrained || !surface.slip_rows)
     throw Error("contact preconditioner: the system has no multiplier surface", ErrorKind::Internal);
   MultiplierSchurParts parts;
   *parts.mass.out() = projected(surface.mass, surface.projector);
-  if (surface.laplacian) *parts.laplacian.out() = projected(surface.laplacian, surface.projector);
+  *parts.laplacian.out() = projected(surface.laplacian, surface.projector);
   // The slip rows' coupling: a slipping node's tangential row depends on u through its slip
   // S_i = B_i u (19), so the Schur complement's row i holds dc_i/dS_i (B A^-1 B^T)_ij, which
   // Pi M Pi (Pi_i = n n^T there) leaves out. In 3D that row's multiplier block loses the
@@ -31,9 +31,8 @@ MultiplierSchurParts form_multiplier_schur_parts(const nonlinear::MultiplierSurf
   // at the first solve). Approximated like the rest of (32), with B A^-1 B^T ~ s M: rows
   // dc_i/dS_i M_ij over the constrained nodes j (columns unprojected: B^T acts on every
   // component of lambda_j), the same scale s applied by the caller.
-  if (surface.slip_rows && surface.constrained)
-    STICTION_PETSC(MatMatMatMult(surface.slip_rows, surface.mass, surface.constrained, MAT_INITIAL_MATRIX,
-                                 PETSC_DEFAULT, parts.slip_coupling.out()));
+  STICTION_PETSC(MatMatMatMult(surface.slip_rows, surface.mass, surface.constrained, MAT_INITIAL_MATRIX,
+                               PETSC_DEFAULT, parts.slip_coupling.out()));
   return parts;
 }
 

@@ -6,7 +6,8 @@
 // Quantities per reference volume:
 //   energy Psi(F), first Piola-Kirchhoff stress P = dPsi/dF = F S,
 //   tangent A_iJkL = dP_iJ / dF_kL (81 entries, index ((i*3 + J)*3 + k)*3 + L).
-// A mixed (displacement-pressure) law will extend this interface with the pressure terms.
+// A mixed (displacement-pressure) law returns its moduli below; the assembly adds the
+// pressure terms.
 #include <Eigen/Dense>
 
 #include <array>
