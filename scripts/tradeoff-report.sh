@@ -31,9 +31,9 @@ tradeoff block-compression 0 --solvers schur-amg,schur-gamg,gamg,lu-mumps \
 # on level 0) and the reference one level finer.
 tradeoff cattaneo-mindlin-2d 1 --discretisation --coarser-levels 0 --solvers schur-amg,schur-gamg,lu-mumps
 # The paper's benchmark at level 0 (49 482 unknowns and 4 029 multipliers, all 8 load steps:
-# friction and the grooves' self-contact from step 5), without the level-1 reference (340 000
-# unknowns and a sliding phase). fieldsplit-schur is left out: 3-4x schur-amg's time per solve
-# on this scene (reports/README, the competitors).
-tradeoff block-strips 0 --solvers schur-amg,schur-gamg,lu-mumps \
+# friction and the grooves' self-contact from step 5), with the level-1 reference (353 835
+# unknowns: about 45 minutes of lu-mumps at 7.5 GB). fieldsplit-schur is left out: 3-4x
+# schur-amg's time per solve on this scene (reports/README, the competitors).
+tradeoff block-strips 0 --discretisation --solvers schur-amg,schur-gamg,lu-mumps \
   --knob schur_amg_ll_pc_hypre_boomeramg_strong_threshold=0.25,0.7 --knob schur_amg_qq_pc_sor_its=2
 echo "tradeoff-report: wrote $out" >&2
