@@ -38,7 +38,7 @@ const char* kRunColumns =
     "cells,load_steps,"
     "load_steps_completed,newton_iterations,linear_solves,krylov_iterations,krylov_per_linear_solve,wall_seconds,"
     "assembly_seconds,setup_seconds,solve_seconds,seconds_per_linear_solve,peak_rss_mb,peak_rss_mb_per_process,mumps_memory_mb,"
-    "amg_operator_complexity,krylov_rtol,mumps_ordering,detail";
+    "amg_operator_complexity,krylov_rtol,mumps_ordering,newton_rtol,newton_forcing,detail";
 const char* kStepColumns =
     "scene,level,solver,processes,step,newton_iteration,converged,reason,krylov_iterations,initial_residual,final_residual,"
     "assembly_seconds,setup_seconds,solve_seconds";
@@ -138,7 +138,7 @@ void write_rows(const std::string& out, const Run& run, const ChildResult& child
   const std::string row = fmt::format(
       "{},{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.2f},{:.3f},"
       "{:.3f},{:.3f},{:.3f},{:.4f},"
-      "{:.1f},{:.1f},{:.0f},{:.3f},{},{},{}",
+      "{:.1f},{:.1f},{:.0f},{:.3f},{},{},{},{},{}",
       run.scene, run.level, run.solver, run.processes, status, m["converged"].value<bool>().value_or(false) ? 1 : 0,
       csv_field(m["reason"].value<std::string>().value_or(status)), num("unknowns"), num("unknowns_u_l"),
       num("unknowns_u_q"), num("unknowns_p"), num("multipliers"), num("vertices"), num("cells"), num("load_steps"), num("load_steps_completed"), num("newton_iterations"), solves,
@@ -146,7 +146,8 @@ void write_rows(const std::string& out, const Run& run, const ChildResult& child
       num("assembly_seconds"), num("setup_seconds"), num("solve_seconds"),
       seconds_per_converged_solve(metrics["linear_solve"].as_array()), peak_total, peak_per_process, mumps,
       n_complexity ? complexity / n_complexity : 0.0, krylov_rtol > 0 ? fmt::format("{:g}", krylov_rtol) : "",
-      ordering, csv_field(detail));
+      ordering, have_metrics && m["newton_rtol"] ? fmt::format("{:g}", num("newton_rtol")) : std::string(),
+      m["newton_forcing"].value<std::string>().value_or(""), csv_field(detail));
   if (!steps.empty()) append_durably(out + "/steps.csv", steps);
   append_durably(out + "/runs.csv", row);
 }
@@ -252,6 +253,7 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
     header += fmt::format("# MPI processes per run: {} (this machine: {} cores)\n", fmt::join(o.ranks, ", "),
                           std::thread::hardware_concurrency());
     header += "# newton forcing: " + (o.forcing.empty() ? std::string("as each scene sets it") : o.forcing) + "\n";
+    header += "# newton rtol: as each scene sets it (newton.rtol; the runs' newton_rtol column)\n";
     header += "# krylov rtol: " +
               (o.krylov_rtol < 0 ? std::string("as each scene sets it (newton.krylov_rtol, else the backend's)")
                                  : fmt::format("{:g}", o.krylov_rtol)) +

@@ -81,6 +81,8 @@ void write_metrics(const std::string& path, const scene::Scene& scene, const Run
                   {"assembly_seconds", assembly},
                   {"setup_seconds", setup},
                   {"solve_seconds", solve},
+                  {"newton_rtol", scene.newton.rtol},
+                  {"newton_forcing", nonlinear::to_string(scene.newton.forcing)},
                   {"processes", summary.processes},
                   {"peak_rss_mb", summary.processes > 1 ? summary.peak_rss_mb_max : peak_resident_mb()},
                   {"backend_options", summary.backend_options}};

@@ -155,7 +155,7 @@ struct Schemas {
               false}}};
     newton = {"newton",
               {{"atol", VT::Float, "absolute tolerance on the free residual norm", false, 1e-10},
-               {"rtol", VT::Float, "tolerance relative to the step's reference residual", false, 1e-8},
+               {"rtol", VT::Float, "tolerance relative to the step's reference residual", false, 1e-6},
                {"max_iterations", VT::Integer, "Newton iterations per load step", false, std::int64_t{25}},
                {"max_backtracks", VT::Integer, "step halvings when a trial state inverts a cell", false,
                 std::int64_t{10}},

@@ -621,12 +621,14 @@ TEST_F(StictionCli, SetChangesASceneKeyForOneRun) {
 // Newton iterations per increment allowed, for schur-amg and boomeramg (which cannot solve a
 // contact system). Whatever the tuning, every cell ends converged or with a named reason and
 // exit code 3, no output holds a NaN, and the report says no cell broke what must hold; a
-// converged cell says how many increments were cut (schur-amg with three iterations: two,
-// the steps.csv of `stiction solve hertz-cylinder-2d --set newton.max_iterations=3`); a cell
-// stopped by the time limit is a hang, and the report names it.
+// converged cell says how many increments were cut (schur-amg with three iterations to the
+// Newton tolerance 1e-8: two, the steps.csv of `stiction solve hertz-cylinder-2d --set
+// newton.max_iterations=3 --set newton.rtol=1e-8`); a cell stopped by the time limit is a
+// hang, and the report names it.
 TEST_F(StictionCli, AtlasNamesEveryCellsEndAndReportsAHang) {
   const CliRun atlas = CliRun::of({"atlas", "hertz-cylinder-2d", "--solvers", "schur-amg,boomeramg", "--axis",
-                                   "contact[0].friction=0,1", "--axis", "newton.max_iterations=1,3", "--out", "atlas"},
+                                   "contact[0].friction=0,1", "--axis", "newton.max_iterations=1,3", "--set",
+                                   "newton.rtol=1e-8", "--out", "atlas"},
                                   dir_);
   ASSERT_EQ(atlas.exit_code, 0) << atlas.err;
   const auto rows = stiction::harness::read_csv((dir_ / "atlas" / "atlas.csv").string()).rows;
@@ -670,9 +672,9 @@ TEST_F(StictionCli, AtlasNamesEveryCellsEndAndReportsAHang) {
   EXPECT_FALSE(fs::exists(dir_ / "bad" / "atlas.csv")) << "refused before any cell ran";
 }
 
-// Every run row names the ordering MUMPS ran; a sweep written before that column existed is
-// resumed with the column added (empty in its rows, which keep their values), and one with a
-// column this version does not write is refused.
+// Every run row names the ordering MUMPS ran and the Newton test it used; a sweep written
+// before the ordering column existed is resumed with the column added (empty in its rows,
+// which keep their values), and one with a column this version does not write is refused.
 TEST_F(StictionCli, BenchRowsNameTheMumpsOrderingAndResumeAnOlderSweep) {
   const std::vector<std::string> bench = {"bench", "--scenes", "cantilever-2d", "--solvers", "lu-mumps", "--quick"};
   auto with_out = [&](const std::string& out, bool resume) {
@@ -686,6 +688,9 @@ TEST_F(StictionCli, BenchRowsNameTheMumpsOrderingAndResumeAnOlderSweep) {
   const auto table = stiction::harness::read_csv((dir_ / "sweep" / "runs.csv").string());
   ASSERT_EQ(table.rows.size(), 1u);
   EXPECT_EQ(table.rows[0].at("mumps_ordering"), "PORD") << "Debian's MUMPS orders with PORD";
+  // The Newton test the run stopped at, and its forcing: cantilever-2d keeps the defaults.
+  EXPECT_EQ(table.rows[0].at("newton_rtol"), "1e-06");
+  EXPECT_EQ(table.rows[0].at("newton_forcing"), "fixed");
 
   // The same table as an older version wrote it: without the mumps_ordering column.
   std::string old_header, old_row;

@@ -435,16 +435,18 @@ TEST(Newton, CutBackRetriesAFailedStepAndReachesTheSameState) {
 }
 
 // Where the doubled increment keeps failing (here: twelve load steps and three Newton
-// iterations allowed, in which an eighth of a step converges and a quarter mostly does not),
-// waiting twice as long after each such failure (max_regrow_wait) wastes fewer attempts than
-// growing back after every two parts, and reaches the same state.
+// iterations allowed to reach 1e-8, in which an eighth of a step converges and a quarter
+// mostly does not), waiting twice as long after each such failure (max_regrow_wait) wastes
+// fewer attempts than growing back after every two parts, and reaches the same state.
 TEST(Newton, CutBackWaitsLongerBeforeRetryingAnIncrementThatFailedAgain) {
   Cantilever c(12);
   auto solver = solvers::create_solver("lu-mumps", PETSC_COMM_WORLD);
-  QuasiStaticSolver reference(PETSC_COMM_WORLD, c.p, NewtonSettings{}, *solver);
+  NewtonSettings to_1e8;
+  to_1e8.rtol = 1e-8;
+  QuasiStaticSolver reference(PETSC_COMM_WORLD, c.p, to_1e8, *solver);
   ASSERT_TRUE(reference.run().back().converged());
 
-  NewtonSettings tight;
+  NewtonSettings tight = to_1e8;
   tight.max_iterations = 3;
   const auto failed_attempts = [](const std::vector<StepResult>& parts) {
     return std::count_if(parts.begin(), parts.end(), [](const StepResult& r) { return r.retried; });

@@ -46,7 +46,7 @@ TEST(Scene, DefaultsComeFromTheSchema) {
   EXPECT_EQ(s->level, 0);
   EXPECT_EQ(s->problem.n_steps(), 1);
   EXPECT_EQ(s->newton.max_iterations, 25);
-  EXPECT_DOUBLE_EQ(s->newton.rtol, 1e-8);
+  EXPECT_DOUBLE_EQ(s->newton.rtol, 1e-6);
   EXPECT_EQ(s->space->kind(), fem::BasisKind::P2Hierarchical);
   EXPECT_EQ(s->problem.dirichlet.size(), 1u);
   EXPECT_TRUE(s->problem.tractions.empty());  // nothing the scene does not name
