@@ -36,4 +36,11 @@ tradeoff cattaneo-mindlin-2d 1 --discretisation --coarser-levels 0 --solvers sch
 # schur-amg's time per solve on this scene (reports/README, the competitors).
 tradeoff block-strips 0 --discretisation --solvers schur-amg,schur-gamg,lu-mumps \
   --knob schur_amg_ll_pc_hypre_boomeramg_strong_threshold=0.25,0.7 --knob schur_amg_qq_pc_sor_its=2
+# The cheapening knobs of the backends the sweeps above leave out, at their defaults on the
+# sphere: MUMPS's BLR tolerance, the ILU fill level, BoomerAMG's W-cycle (one tolerance pair,
+# so every row but the knobs' is a default; ILU(2) takes about 7 minutes).
+"$build/stiction" tradeoff hertz-sphere-3d --level 1 --solvers schur-amg,lu-mumps-blr,ilu-gmres --newton-rtols 1e-6 \
+  --krylov-rtols 1e-4 --forcings fixed --knob schur_amg_ll_pc_hypre_boomeramg_cycle_type=W \
+  --knob lu_mumps_blr_mat_mumps_cntl_7=1e-2,1e-4,1e-6 --knob ilu_gmres_pc_factor_levels=1,2 --time-limit "$limit" \
+  --out "$out/hertz-sphere-3d-L1-knobs" --resume
 echo "tradeoff-report: wrote $out" >&2
