@@ -68,7 +68,7 @@ struct NewtonSettings {
   // (reports/tradeoff) it needs 20-38% fewer Newton and Krylov iterations than 1e-8 on the
   // block with strips, the block without contact and Cattaneo-Mindlin's partial slip (the
   // same on the Hertz sphere), and its error against a tight reference stays below the
-  // mesh's own error (the next level's reference) on every scene where that was measured.
+  // mesh's own error (against the next level's reference) on all four.
   double rtol = 1e-6;
   int max_iterations = 25;
   int max_backtracks = 10;      // step halvings when a trial state inverts a cell or is NaN
