@@ -146,7 +146,7 @@ void write_rows(const std::string& out, const Run& run, const ChildResult& child
       num("assembly_seconds"), num("setup_seconds"), num("solve_seconds"),
       seconds_per_converged_solve(metrics["linear_solve"].as_array()), peak_total, peak_per_process, mumps,
       n_complexity ? complexity / n_complexity : 0.0, krylov_rtol > 0 ? fmt::format("{:g}", krylov_rtol) : "",
-      ordering, have_metrics && m["newton_rtol"] ? fmt::format("{:g}", num("newton_rtol")) : std::string(),
+      ordering, m["newton_rtol"] ? fmt::format("{:g}", num("newton_rtol")) : std::string(),
       m["newton_forcing"].value<std::string>().value_or(""), csv_field(detail));
   if (!steps.empty()) append_durably(out + "/steps.csv", steps);
   append_durably(out + "/runs.csv", row);

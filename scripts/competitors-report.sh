@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The competitors against the paper's preconditioner, levels 0-2, one sweep per scene
-# (reports/competitors-<scene>/): every backend of issue #16's comparison beside schur-amg
-# and lu-mumps. COMPETITORS_OUT (default reports) and COMPETITORS_TIME_LIMIT (seconds per
+# (reports/competitors-<scene>/): the generic competitors (MUMPS with BLR, PETSc's field
+# split, GAMG, the hierarchy with GAMG) beside schur-amg and lu-mumps. COMPETITORS_OUT (default reports) and COMPETITORS_TIME_LIMIT (seconds per
 # run, default 1800) adjust it; every sweep resumes (--resume), so an interrupted one
 # continues where it stopped. lu-mumps at level 2 is refused by its memory guard where
 # MUMPS's own estimate exceeds the machine (a row that says so).

@@ -29,6 +29,8 @@ struct Schemas {
   TableSpec scene_meta, material, size_field, mesh, body, dirichlet, traction, body_force, contact, phase, load, newton, output,
       root;
   Schemas() {
+    // The defaults of the Newton and load-stepping keys are NewtonSettings' own.
+    const nonlinear::NewtonSettings nd;
     scene_meta = {"scene",
                   {{"name", VT::String, "scene name (defaults to the file name)", false, std::string()},
                    {"description", VT::String, "one line on what the scene shows", false, std::string()},
@@ -146,38 +148,39 @@ struct Schemas {
              {"phases", VT::TableArray, "instead of steps: consecutive phases [{until = t, steps = n}, ...]", false, {},
               {}, &phase},
              {"max_cuts", VT::Integer, "halvings of a failed load increment before the run stops (0: off)", false,
-              std::int64_t{6}},
+              std::int64_t{nd.max_cuts}},
              {"max_regrow_wait", VT::Integer,
               "converged parts at a cut size before a size that failed again is retried: 2, doubled at each such "
               "failure up to this (2: always 2)",
-              false, std::int64_t{16}},
+              false, std::int64_t{nd.max_regrow_wait}},
              {"quick_until", VT::Float, "pseudo-time where the scene's short version (--quick) stops (default: the end)",
               false}}};
     newton = {"newton",
-              {{"atol", VT::Float, "absolute tolerance on the free residual norm", false, 1e-10},
-               {"rtol", VT::Float, "tolerance relative to the step's reference residual", false, 1e-6},
-               {"max_iterations", VT::Integer, "Newton iterations per load step", false, std::int64_t{25}},
+              {{"atol", VT::Float, "absolute tolerance on the free residual norm", false, nd.atol},
+               {"rtol", VT::Float, "tolerance relative to the step's reference residual", false, nd.rtol},
+               {"max_iterations", VT::Integer, "Newton iterations per load step", false, std::int64_t{nd.max_iterations}},
                {"max_backtracks", VT::Integer, "step halvings when a trial state inverts a cell", false,
-                std::int64_t{10}},
+                std::int64_t{nd.max_backtracks}},
                {"min_det_f_ratio", VT::Float,
                 "an increment whose smallest det F falls below this fraction of its start's is cut (0: never)", false,
-                0.5},
-               {"forcing", VT::String, "Krylov tolerance per Newton step (inexact Newton)", false, std::string("fixed"),
+                nd.min_det_f_ratio},
+               {"forcing", VT::String, "Krylov tolerance per Newton step (inexact Newton)", false, to_string(nd.forcing),
                 {"fixed", "eisenstat-walker"}},
                {"krylov_rtol", VT::Float,
                 "relative tolerance of every Krylov solve, in place of the backend's -ksp_rtol (0: the backend's; "
                 "with eisenstat-walker, the cap on its forcing term under contact)",
-                false, 0.0},
+                false, nd.krylov_rtol},
                {"state_update_tolerance", VT::Float,
                 "contact states change only at iterates that solve their states to this relative residual (0: after "
                 "every solve, as the paper)",
-                false, 1.0},
+                false, nd.active_set.update_tolerance},
                {"max_held_iterations", VT::Integer, "Newton iterations the contact states may be held before an update",
-                false, std::int64_t{8}},
+                false, std::int64_t{nd.active_set.max_held}},
                {"cycle_remedies", VT::Integer,
                 "times a contact-state cycle tightens the update tolerance before the increment fails", false,
-                std::int64_t{2}},
-               {"cycle_remedy_factor", VT::Float, "factor on state_update_tolerance per remedy", false, 1e-2}}};
+                std::int64_t{nd.active_set.cycle_remedies}},
+               {"cycle_remedy_factor", VT::Float, "factor on state_update_tolerance per remedy", false,
+                nd.active_set.remedy_factor}}};
     output = {"output",
               {{"vtu", VT::Boolean, "write a VTU per load step and a PVD collection", false, true},
                {"vtu_format", VT::String,
