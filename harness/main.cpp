@@ -23,6 +23,7 @@
 #include "mpi_processes.hpp"
 #include "common/error.hpp"
 #include "common/petsc.hpp"
+#include "common/process_memory.hpp"
 #include "registry.hpp"
 #include "run_info.hpp"
 #include "scene/scene.hpp"
@@ -76,6 +77,7 @@ void reject_unused(const std::set<std::string>& given) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  restart_with_huge_pages_for_mapped_blocks(argv);
   std::vector<char*> cli_argv{argv[0]}, petsc_argv{argv[0]};
   std::set<std::string> petsc_given;
   std::vector<std::string> petsc_pairs;  // "-key value", as given

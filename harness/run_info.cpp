@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "common/petsc.hpp"
+#include "common/process_memory.hpp"
 
 #ifndef STICTION_SOURCE_DIR
 #define STICTION_SOURCE_DIR "."
@@ -63,6 +64,7 @@ RunInfo collect_run_info(int argc, char** argv) {
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
   i.machine = fmt::format("{} cores, {:.1f} GiB memory", std::thread::hardware_concurrency(),
                           static_cast<double>(pages) * page / (1024.0 * 1024 * 1024));
+  i.allocator = allocator_settings();
   std::time_t now = std::time(nullptr);
   char date[64];
   std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&now));
@@ -71,8 +73,10 @@ RunInfo collect_run_info(int argc, char** argv) {
 }
 
 std::string format_run_info(const RunInfo& i, const std::string& p) {
-  return fmt::format("{0}command: {1}\n{0}git revision: {2}\n{0}PETSc: {3}\n{0}BLAS: {4} ({5})\n{0}machine: {6}\n{0}date: {7}\n",
-                     p, i.command_line, i.git_revision, i.petsc_version, i.blas, i.threads, i.machine, i.date);
+  return fmt::format(
+      "{0}command: {1}\n{0}git revision: {2}\n{0}PETSc: {3}\n{0}BLAS: {4} ({5})\n{0}machine: {6}\n{0}memory "
+      "allocator: {7}\n{0}date: {8}\n",
+      p, i.command_line, i.git_revision, i.petsc_version, i.blas, i.threads, i.machine, i.allocator, i.date);
 }
 
 }  // namespace stiction::harness

@@ -13,6 +13,7 @@ struct RunInfo {
   std::string blas;          // where libblas.so.3 points
   std::string threads;       // OMP/OPENBLAS thread settings
   std::string machine;       // cores and memory
+  std::string allocator;     // how freed memory goes back to the system (peak RSS depends on it)
   std::string date;
 };
 

@@ -207,6 +207,7 @@ nonlinear::LinearSolveStats KspSolver::solve(const nonlinear::NewtonSystem& syst
   // Resident memory now and at its peak so far, and what the allocator holds freed: a
   // resident peak far above the heap in use is fragmentation or a transient of one phase.
   s.extra["memory_heap_free_MB"] = heap_free_mb();
+  s.extra["memory_mapped_MB"] = mapped_blocks_mb();
   s.extra["memory_resident_MB"] = resident_mb();
   s.extra["memory_peak_resident_MB"] = peak_resident_mb();
   KSPConvergedReason reason;

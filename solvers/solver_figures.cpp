@@ -58,6 +58,8 @@ double heap_in_use_mb() {
 
 double heap_free_mb() { return static_cast<double>(mallinfo2().fordblks) / 1048576.0; }
 
+double mapped_blocks_mb() { return static_cast<double>(mallinfo2().hblkhd) / 1048576.0; }
+
 double aij_storage_mb(Mat A) {
   PetscBool aij = PETSC_FALSE;
   if (!A || PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(A), &aij, MATSEQAIJ, MATMPIAIJ, "") || !aij)

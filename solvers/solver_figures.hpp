@@ -27,6 +27,9 @@ double heap_in_use_mb();
 // the process, and resident where they were touched, though nothing uses them. Resident
 // memory above the heap in use and this is code, stacks and shared segments.
 double heap_free_mb();
+// Of the heap in use, the blocks mapped on their own (mallinfo2's hblkhd), in MB: returned
+// to the system when freed (common/process_memory.hpp); 0 when mapping is switched off.
+double mapped_blocks_mb();
 // Storage of an assembled AIJ matrix (values, column indices, row starts), in MB; 0 for
 // other types (shells, views).
 double aij_storage_mb(Mat A);

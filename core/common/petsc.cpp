@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "common/process_memory.hpp"
+
 namespace stiction {
 
 void petsc_check(PetscErrorCode ierr, const char* expr, const char* file, int line) {
@@ -20,6 +22,7 @@ PetscSession::PetscSession(int* argc, char*** argv) {
   PetscInitialized(&initialised);
   if (initialised) return;
   STICTION_PETSC(PetscInitialize(argc, argv, nullptr, nullptr));
+  return_freed_memory_to_the_system();  // after everything MPI_Init loads
   PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
   // Default signal behaviour: a closed pipe (stiction replay ... | head) ends the process
   // quietly instead of a PETSc crash report and MPI_Abort.

@@ -1,5 +1,10 @@
 #include "common/process_memory.hpp"
 
+#include <fmt/format.h>
+#include <malloc.h>
+#include <unistd.h>
+
+#include <cstdlib>
 #include <fstream>
 #include <string>
 
@@ -18,6 +23,56 @@ double proc_status_mb(int pid, const char* field) {
     std::getline(status, key);
   }
   return 0;
+}
+
+namespace {
+
+// Blocks of at least this size are mapped on their own; a heap whose free top exceeds twice
+// it is trimmed (glibc's own dynamic rule keeps the trim threshold at twice the mapping one).
+std::size_t mapped_block_bytes() {
+  const char* mb = std::getenv("STICTION_MMAP_THRESHOLD_MB");
+  return static_cast<std::size_t>((mb ? std::atof(mb) : 4.0) * 1048576.0);
+}
+
+bool hold_freed_memory() {
+  const char* hold = std::getenv("STICTION_HOLD_FREED_MEMORY");
+  return hold && std::string(hold) == "1";
+}
+
+}  // namespace
+
+void return_freed_memory_to_the_system() {
+  if (hold_freed_memory()) return;
+  const std::size_t bytes = mapped_block_bytes();
+  mallopt(M_MMAP_MAX, 65536);  // glibc's default
+  mallopt(M_MMAP_THRESHOLD, static_cast<int>(bytes));
+  mallopt(M_TRIM_THRESHOLD, static_cast<int>(2 * bytes));
+}
+
+void restart_with_huge_pages_for_mapped_blocks(char** argv) {
+  if (hold_freed_memory()) return;
+  const char* given = std::getenv("GLIBC_TUNABLES");
+  const std::string tunables = given ? given : "";
+  if (tunables.find("glibc.malloc.hugetlb") != std::string::npos) return;
+  const std::string with = (tunables.empty() ? "" : tunables + ":") + "glibc.malloc.hugetlb=1";
+  if (setenv("GLIBC_TUNABLES", with.c_str(), 1) != 0) return;
+  execv("/proc/self/exe", argv);
+  // Not re-executed (no /proc): the same run with 4 kB pages.
+  if (given) setenv("GLIBC_TUNABLES", given, 1);
+  else unsetenv("GLIBC_TUNABLES");
+}
+
+std::string allocator_settings() {
+  if (hold_freed_memory()) return "glibc malloc, freed memory held (STICTION_HOLD_FREED_MEMORY=1)";
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  std::ifstream thp("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string thp_modes;
+  std::getline(thp, thp_modes);
+  return fmt::format(
+      "glibc malloc, blocks of {:g} MB and more mapped on their own, heap trimmed above {:g} MB; GLIBC_TUNABLES={}; "
+      "transparent huge pages: {}",
+      mapped_block_bytes() / 1048576.0, 2 * mapped_block_bytes() / 1048576.0, tunables ? tunables : "unset",
+      thp_modes.empty() ? "unknown" : thp_modes);
 }
 
 }  // namespace stiction

@@ -919,6 +919,39 @@ TEST_F(StictionCli, MumpsPivotingIsRecordedAndDelaysPivotsOnlyWhereContactRowsAr
   EXPECT_EQ(largest_delay("cantilever-2d"), 0);
 }
 
+// A run's large arrays are mapped on their own, so that memory a phase frees leaves the
+// process and the peak RSS is what a phase needs (common/process_memory.hpp): block-compression's
+// matrix and vectors at its first linear solve, backed by transparent huge pages (the run
+// re-executed itself with glibc.malloc.hugetlb=1). With STICTION_HOLD_FREED_MEMORY=1 (the
+// settings SuperLU_dist's CombBLAS leaves in every program that loads PETSc) none is, and
+// freed memory stays resident. The run header names the setting.
+TEST_F(StictionCli, LargeArraysAreMappedSoThatFreedMemoryLeavesTheProcess) {
+  const auto run = [&](const std::string& name, double* mapped_mb, std::string* header) {
+    const fs::path metrics = dir_ / (name + ".toml");
+    const CliRun r = solve("block-compression",
+                           {"--solver", "schur-amg", "--until", "0.25", "--no-vtu", "--metrics", metrics.string()});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const toml::table record = toml::parse_file(metrics.string());
+    const auto* first_solve = record["linear_solve"][0].as_table();
+    ASSERT_NE(first_solve, nullptr);
+    *mapped_mb = (*first_solve)["memory_mapped_MB"].value_or(-1.0);
+    std::ifstream steps(dir_ / "out" / "steps.csv");
+    for (std::string line; std::getline(steps, line);)
+      if (line.rfind("# memory allocator: ", 0) == 0) *header = line;
+  };
+  double mapped = -1, held_mapped = -1;
+  std::string header, held_header;
+  run("mapped", &mapped, &header);
+  setenv("STICTION_HOLD_FREED_MEMORY", "1", 1);
+  run("held", &held_mapped, &held_header);
+  unsetenv("STICTION_HOLD_FREED_MEMORY");
+  EXPECT_GT(mapped, 10.0);  // at least the matrix (45 438 rows, about 28 MB of values)
+  EXPECT_EQ(held_mapped, 0.0);
+  EXPECT_NE(header.find("mapped on their own"), std::string::npos) << header;
+  EXPECT_NE(header.find("glibc.malloc.hugetlb=1"), std::string::npos) << header;
+  EXPECT_NE(held_header.find("freed memory held"), std::string::npos) << held_header;
+}
+
 // The block with strips' schedules and geometry, broken one at a time: one clear message
 // naming the file once, exit 2, before anything is solved.
 TEST_F(StictionCli, BlockStripsScheduleAndGrooveErrorsAreInputErrors) {
