@@ -1,0 +1,34 @@
+# Redraw with: gnuplot mooney-rivlin-block-growth.gp (in this directory)
+data = 'mooney-rivlin-block-growth.dat'
+set terminal svg size 720,480 dynamic font 'sans,12'
+set key left top
+set grid
+set logscale xy
+set xlabel 'unknowns of the Newton system'
+set output 'mooney-rivlin-block-time-per-solve.svg'
+set ylabel 's / linear solve (set-up + Krylov)'
+set title 'mooney-rivlin-block: time per linear solve'
+plot data index 0 using 1:2 with linespoints pt 7 lw 2 title 'fieldsplit-schur (p = 1.53)', \
+     data index 1 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps (p = 2.01)', \
+     data index 2 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.59)', \
+     data index 3 using 1:2 with linespoints pt 7 lw 2 title 'schur-amg (p = 1.19)', \
+     data index 4 using 1:2 with linespoints pt 7 lw 2 title 'schur-gamg (p = 1.22)'
+set output 'mooney-rivlin-block-peak-memory.svg'
+set ylabel 'peak resident memory (MB)'
+set title 'mooney-rivlin-block: peak memory'
+plot data index 0 using 1:3 with linespoints pt 7 lw 2 title 'fieldsplit-schur (p = 0.92)', \
+     data index 1 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.32)', \
+     data index 2 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.21)', \
+     data index 3 using 1:3 with linespoints pt 7 lw 2 title 'schur-amg (p = 0.84)', \
+     data index 4 using 1:3 with linespoints pt 7 lw 2 title 'schur-gamg (p = 0.84)'
+unset logscale
+set xlabel 'mesh level'
+set xtics 1
+set ylabel 'Krylov iterations per Newton step'
+set output 'mooney-rivlin-block-krylov.svg'
+set title 'mooney-rivlin-block: Krylov iterations per Newton step'
+plot data index 0 using 4:5 with linespoints pt 7 lw 2 title 'fieldsplit-schur', \
+     data index 1 using 4:5 with linespoints pt 7 lw 2 title 'lu-mumps', \
+     data index 2 using 4:5 with linespoints pt 7 lw 2 title 'lu-mumps-blr', \
+     data index 3 using 4:5 with linespoints pt 7 lw 2 title 'schur-amg', \
+     data index 4 using 4:5 with linespoints pt 7 lw 2 title 'schur-gamg'
