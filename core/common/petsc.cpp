@@ -21,8 +21,10 @@ PetscSession::PetscSession(int* argc, char*** argv) {
   PetscBool initialised = PETSC_FALSE;
   PetscInitialized(&initialised);
   if (initialised) return;
+  // CombBLAS's settings were made when the program was loaded; nothing MPI_Init loads
+  // calls mallopt.
+  return_freed_memory_to_the_system();
   STICTION_PETSC(PetscInitialize(argc, argv, nullptr, nullptr));
-  return_freed_memory_to_the_system();  // after everything MPI_Init loads
   PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
   // Default signal behaviour: a closed pipe (stiction replay ... | head) ends the process
   // quietly instead of a PETSc crash report and MPI_Abort.

@@ -8,6 +8,8 @@
 #include <fstream>
 #include <string>
 
+#include "common/error.hpp"
+
 namespace stiction {
 
 double proc_status_mb(int pid, const char* field) {
@@ -29,9 +31,17 @@ namespace {
 
 // Blocks of at least this size are mapped on their own; a heap whose free top exceeds twice
 // it is trimmed (glibc's own dynamic rule keeps the trim threshold at twice the mapping one).
+// STICTION_MMAP_THRESHOLD_MB, 4 by default, within what glibc's mallopt accepts (it refuses
+// thresholds above 32 MB on 64-bit systems).
 std::size_t mapped_block_bytes() {
-  const char* mb = std::getenv("STICTION_MMAP_THRESHOLD_MB");
-  return static_cast<std::size_t>((mb ? std::atof(mb) : 4.0) * 1048576.0);
+  const char* given = std::getenv("STICTION_MMAP_THRESHOLD_MB");
+  if (!given) return std::size_t{4} << 20;
+  char* end = nullptr;
+  const double mb = std::strtod(given, &end);
+  if (end == given || *end != '\0' || !(mb >= 0.125 && mb <= 32))
+    throw Error(fmt::format("STICTION_MMAP_THRESHOLD_MB must be a size in MB from 0.125 to 32, not '{}'", given),
+                ErrorKind::Input, Reach::EveryProcess);
+  return static_cast<std::size_t>(mb * 1048576.0);
 }
 
 bool hold_freed_memory() {

@@ -924,7 +924,8 @@ TEST_F(StictionCli, MumpsPivotingIsRecordedAndDelaysPivotsOnlyWhereContactRowsAr
 // matrix and vectors at its first linear solve, backed by transparent huge pages (the run
 // re-executed itself with glibc.malloc.hugetlb=1). With STICTION_HOLD_FREED_MEMORY=1 (the
 // settings SuperLU_dist's CombBLAS leaves in every program that loads PETSc) none is, and
-// freed memory stays resident. The run header names the setting.
+// freed memory stays resident. The run header names the setting; a threshold glibc would
+// refuse is an input error.
 TEST_F(StictionCli, LargeArraysAreMappedSoThatFreedMemoryLeavesTheProcess) {
   const auto run = [&](const std::string& name, double* mapped_mb, std::string* header) {
     const fs::path metrics = dir_ / (name + ".toml");
@@ -950,6 +951,10 @@ TEST_F(StictionCli, LargeArraysAreMappedSoThatFreedMemoryLeavesTheProcess) {
   EXPECT_NE(header.find("mapped on their own"), std::string::npos) << header;
   EXPECT_NE(header.find("glibc.malloc.hugetlb=1"), std::string::npos) << header;
   EXPECT_NE(held_header.find("freed memory held"), std::string::npos) << held_header;
+  setenv("STICTION_MMAP_THRESHOLD_MB", "64", 1);  // beyond glibc's 32 MB
+  const CliRun refused = solve("cantilever-2d");
+  unsetenv("STICTION_MMAP_THRESHOLD_MB");
+  expect_error(refused, 2, {"STICTION_MMAP_THRESHOLD_MB", "from 0.125 to 32", "'64'"});
 }
 
 // The block with strips' schedules and geometry, broken one at a time: one clear message
