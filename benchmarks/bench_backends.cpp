@@ -14,6 +14,7 @@
 
 #include "builtin_scenes.hpp"
 #include "common/petsc.hpp"
+#include "common/process_memory.hpp"
 #include "nonlinear/newton.hpp"
 #include "registry.hpp"
 
@@ -82,6 +83,7 @@ void register_all() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  restart_with_huge_pages_for_mapped_blocks(argv);  // as stiction does: the same allocator
   benchmark::Initialize(&argc, argv);
   int pargc = 1;
   PetscSession petsc(&pargc, &argv);
