@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # The competitors against the paper's preconditioner, levels 0-2, one sweep per scene
 # (reports/competitors-<scene>/): the generic competitors (MUMPS with BLR, PETSc's field
-# split, GAMG, the hierarchy with GAMG) beside schur-amg and lu-mumps. COMPETITORS_OUT (default reports) and COMPETITORS_TIME_LIMIT (seconds per
-# run, default 1800) adjust it; every sweep resumes (--resume), so an interrupted one
-# continues where it stopped. lu-mumps at level 2 is refused by its memory guard where
-# MUMPS's own estimate exceeds the machine (a row that says so).
+# split, GAMG, the hierarchy with GAMG) beside schur-amg and lu-mumps. COMPETITORS_OUT
+# (default reports) and COMPETITORS_TIME_LIMIT (seconds per run, default 1800) adjust it;
+# every sweep resumes (--resume), so an interrupted one continues where it stopped. lu-mumps
+# at level 2 is refused by its memory guard where MUMPS's own estimate exceeds the machine
+# (a row that says so).
 # Usage: scripts/competitors-report.sh [build dir] [scene ...]
 set -euo pipefail
 build=${1:-build}

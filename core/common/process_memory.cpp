@@ -40,7 +40,7 @@ std::size_t mapped_block_bytes() {
   const double mb = std::strtod(given, &end);
   if (end == given || *end != '\0' || !(mb >= 0.125 && mb <= 32))
     throw Error(fmt::format("STICTION_MMAP_THRESHOLD_MB must be a size in MB from 0.125 to 32, not '{}'", given),
-                ErrorKind::Input, Reach::EveryProcess);
+                ErrorKind::Input);
   return static_cast<std::size_t>(mb * 1048576.0);
 }
 
@@ -78,11 +78,11 @@ std::string allocator_settings() {
   std::ifstream thp("/sys/kernel/mm/transparent_hugepage/enabled");
   std::string thp_modes;
   std::getline(thp, thp_modes);
+  const double mb = mapped_block_bytes() / 1048576.0;
   return fmt::format(
       "glibc malloc, blocks of {:g} MB and more mapped on their own, heap trimmed above {:g} MB; GLIBC_TUNABLES={}; "
       "transparent huge pages: {}",
-      mapped_block_bytes() / 1048576.0, 2 * mapped_block_bytes() / 1048576.0, tunables ? tunables : "unset",
-      thp_modes.empty() ? "unknown" : thp_modes);
+      mb, 2 * mb, tunables ? tunables : "unset", thp_modes.empty() ? "unknown" : thp_modes);
 }
 
 }  // namespace stiction
