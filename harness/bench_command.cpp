@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -18,6 +19,7 @@
 
 #include "bench_report.hpp"
 #include "builtin_scenes.hpp"
+#include "checkpoint.hpp"
 #include "child_process.hpp"
 #include "common/error.hpp"
 #include "csv_table.hpp"
@@ -87,7 +89,41 @@ std::string mumps_ordering_name(int code) {
   return fmt::format("code {}", code);
 }
 
-void write_rows(const std::string& out, const Run& run, const ChildResult& child, const std::string& run_dir) {
+// A run that an earlier sweep started and did not finish (killed with the sweep, or the
+// machine went down): its directory holds a checkpoint and the record of its finished load
+// steps, and `--resume` continues it from there instead of starting it again.
+struct Interrupted {
+  int last_step = 0;           // the checkpoint's load step
+  double wall_seconds = 0;     // of the earlier segments, up to their last completed load step
+  double peak_rss_mb = 0;      // the largest of the earlier segments'
+  int segments = 0;
+};
+
+std::optional<Interrupted> interrupted_run(const Run& run, const std::string& run_dir) {
+  const std::string checkpoint = run_dir + "/checkpoint.bin", metrics_path = run_dir + "/metrics.toml";
+  if (!fs::exists(checkpoint) || !fs::exists(metrics_path)) return std::nullopt;
+  try {
+    const toml::table metrics = toml::parse_file(metrics_path);
+    const auto* m = metrics["run"].as_table();
+    if (!m || (*m)["solver"].value<std::string>() != run.solver || (*m)["level"].value<int64_t>() != run.level ||
+        (*m)["processes"].value<int64_t>().value_or(1) != run.processes)
+      return std::nullopt;
+    Interrupted i;
+    i.last_step = read_checkpoint(checkpoint).state.step;
+    i.wall_seconds = (*m)["wall_seconds"].value<double>().value_or(0);
+    i.peak_rss_mb = (*m)[run.processes > 1 ? "peak_rss_mb_sum" : "peak_rss_mb"].value<double>().value_or(0);
+    i.segments = static_cast<int>((*m)["segments"].value<int64_t>().value_or(1));
+    return i;
+  } catch (const toml::parse_error&) {
+    return std::nullopt;
+  } catch (const Error&) {  // a checkpoint that does not read: the run starts again
+    return std::nullopt;
+  }
+}
+
+// Appends the run's row to runs.csv and its linear solves to steps.csv; returns its wall time.
+double write_rows(const std::string& out, const Run& run, const ChildResult& child, const std::string& run_dir,
+                  const std::optional<Interrupted>& continued) {
   const std::string metrics_path = run_dir + "/metrics.toml";
   toml::table metrics;
   bool have_metrics = fs::exists(metrics_path);
@@ -130,11 +166,20 @@ void write_rows(const std::string& out, const Run& run, const ChildResult& child
   // On several processes the job's peak is the sum over its processes (metrics.toml, each
   // process's own VmHWM); on one, the child's.
   const bool several = run.processes > 1;
-  const double peak_total = several && have_metrics ? num("peak_rss_mb_sum") : child.peak_rss_mb;
-  const double peak_per_process = several && have_metrics ? num("peak_rss_mb") : child.peak_rss_mb;
+  double peak_total = several && have_metrics ? num("peak_rss_mb_sum") : child.peak_rss_mb;
+  double peak_per_process = several && have_metrics ? num("peak_rss_mb") : child.peak_rss_mb;
+  double wall = child.wall_seconds;
   std::string detail = m["detail"].value<std::string>().value_or("");
   if (status != "ok" && status != "newton-failed") detail = last_line(run_dir + "/stderr.txt");
-  if (child.hit_time_limit) detail = fmt::format("stopped after {:.0f} s", child.wall_seconds);
+  if (continued) {
+    wall += continued->wall_seconds;
+    peak_total = std::max(peak_total, continued->peak_rss_mb);
+    if (!several) peak_per_process = peak_total;
+  }
+  if (child.hit_time_limit) detail = fmt::format("stopped after {:.0f} s", wall);
+  if (continued)
+    detail += fmt::format("{}continued from its checkpoint after load step {} ({} segments; wall time and peak over all)",
+                          detail.empty() ? "" : "; ", continued->last_step, continued->segments + 1);
   const std::string row = fmt::format(
       "{},{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.2f},{:.3f},"
       "{:.3f},{:.3f},{:.3f},{:.4f},"
@@ -142,7 +187,7 @@ void write_rows(const std::string& out, const Run& run, const ChildResult& child
       run.scene, run.level, run.solver, run.processes, status, m["converged"].value<bool>().value_or(false) ? 1 : 0,
       csv_field(m["reason"].value<std::string>().value_or(status)), num("unknowns"), num("unknowns_u_l"),
       num("unknowns_u_q"), num("unknowns_p"), num("multipliers"), num("vertices"), num("cells"), num("load_steps"), num("load_steps_completed"), num("newton_iterations"), solves,
-      num("krylov_iterations"), solves > 0 ? num("krylov_iterations") / solves : 0.0, child.wall_seconds,
+      num("krylov_iterations"), solves > 0 ? num("krylov_iterations") / solves : 0.0, wall,
       num("assembly_seconds"), num("setup_seconds"), num("solve_seconds"),
       seconds_per_converged_solve(metrics["linear_solve"].as_array()), peak_total, peak_per_process, mumps,
       n_complexity ? complexity / n_complexity : 0.0, krylov_rtol > 0 ? fmt::format("{:g}", krylov_rtol) : "",
@@ -150,6 +195,7 @@ void write_rows(const std::string& out, const Run& run, const ChildResult& child
       m["newton_forcing"].value<std::string>().value_or(""), csv_field(detail));
   if (!steps.empty()) append_durably(out + "/steps.csv", steps);
   append_durably(out + "/runs.csv", row);
+  return wall;
 }
 
 // Estimated wall time of a run that has not finished, from the finished ones (seconds; 0:
@@ -287,10 +333,17 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
       continue;
     }
     const std::string run_dir = (fs::path(out) / "runs" / run.id()).string();
-    fs::remove_all(run_dir, ec);
-    fs::create_directories(run_dir, ec);
-    std::vector<std::string> argv{exe, "solve", run.scene, "--level", std::to_string(run.level), "--solver", run.solver,
-                                  "--out", run_dir, "--quiet", "--no-vtu", "--metrics", run_dir + "/metrics.toml"};
+    const std::optional<Interrupted> continued = o.resume ? interrupted_run(run, run_dir) : std::nullopt;
+    if (!continued) {
+      fs::remove_all(run_dir, ec);
+      fs::create_directories(run_dir, ec);
+    } else {
+      fmt::print(stderr, "bench [{}/{}] {} {} L{}{}: continued from its checkpoint after load step {}\n", index,
+                 runs.size(), run.scene, run.solver, run.level, on, continued->last_step);
+    }
+    std::vector<std::string> argv{exe,        "solve",    run.scene,  "--level",   std::to_string(run.level),
+                                  "--solver", run.solver, continued ? "--restart" : "--out", run_dir, "--quiet",
+                                  "--no-vtu", "--metrics", run_dir + "/metrics.toml"};
     if (!o.forcing.empty()) argv.insert(argv.end(), {"--forcing", o.forcing});
     if (o.krylov_rtol >= 0) argv.insert(argv.end(), {"--krylov-rtol", fmt::format("{:g}", o.krylov_rtol)});
     if (o.quick) argv.push_back("--quick");
@@ -311,13 +364,16 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
         last_print = t;
       }
     };
-    const ChildResult child = run_child(argv, run_dir + "/stdout.txt", run_dir + "/stderr.txt", limits, on_tick,
+    // The time limit holds for the whole run, its earlier segments included.
+    ChildLimits run_limits = limits;
+    if (continued) run_limits.seconds = std::max(limits.seconds - continued->wall_seconds, 1.0);
+    const ChildResult child = run_child(argv, run_dir + "/stdout.txt", run_dir + "/stderr.txt", run_limits, on_tick,
                                         launcher_for(run.processes));
-    write_rows(out, run, child, run_dir);
-    if (solve_status(child, fs::exists(run_dir + "/metrics.toml")) == "ok") finished_runs.add(run, child.wall_seconds);
+    const double wall = write_rows(out, run, child, run_dir, continued);
+    const std::string status = solve_status(child, fs::exists(run_dir + "/metrics.toml"));
+    if (status == "ok") finished_runs.add(run, wall);
     fmt::print(stderr, "bench [{}/{}] {} {} L{}{}: {} in {:.1f} s, peak {:.0f} MB\n", index, runs.size(), run.scene,
-               run.solver, run.level, on, solve_status(child, fs::exists(run_dir + "/metrics.toml")), child.wall_seconds,
-               child.peak_rss_mb);
+               run.solver, run.level, on, status, wall, child.peak_rss_mb);
     write_bench_report(out);
   }
   write_bench_report(out);

@@ -1,30 +1,25 @@
 #include "run_metrics.hpp"
 
 #include <fmt/format.h>
-#include <toml++/toml.h>
 
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 
 #include "common/error.hpp"
 #include "common/process_memory.hpp"
 
 namespace stiction::harness {
+namespace {
 
-void write_metrics(const std::string& path, const scene::Scene& scene, const RunSummary& summary,
-                   const std::vector<nonlinear::StepResult>& steps) {
-  const auto& space = *scene.space;
-  toml::array step_rows, solve_rows;
-  long newton = 0, solves = 0, krylov = 0;
-  double assembly = 0, setup = 0, solve = 0;
-  int completed = 0, cuts = 0;
+// One [[step]] row per increment and one [[linear_solve]] row per Newton iteration.
+void append_rows(const std::vector<nonlinear::StepResult>& steps, toml::array& step_rows, toml::array& solve_rows) {
   for (const auto& s : steps) {
-    completed += s.completes_step ? 1 : 0;
-    cuts += s.retried ? 1 : 0;
-    newton += static_cast<long>(s.iterations.size());
     step_rows.push_back(toml::table{{"step", s.step},
                                     {"time", s.time},
                                     {"cut", s.cut},
                                     {"retried", s.retried},
+                                    {"completes_step", s.completes_step},
                                     {"converged", s.converged()},
                                     {"reason", nonlinear::to_string(s.reason)},
                                     {"newton_iterations", static_cast<int64_t>(s.iterations.size())},
@@ -34,11 +29,6 @@ void write_metrics(const std::string& path, const scene::Scene& scene, const Run
                                     {"wall_seconds", s.wall_seconds}});
     int k = 0;
     for (const auto& it : s.iterations) {
-      ++solves;
-      krylov += it.linear.iterations;
-      assembly += it.assembly_seconds;
-      setup += it.linear.setup_seconds;
-      solve += it.linear.solve_seconds;
       toml::table row{{"step", s.step},
                       {"newton_iteration", ++k},
                       {"converged", it.linear.converged},
@@ -53,6 +43,72 @@ void write_metrics(const std::string& path, const scene::Scene& scene, const Run
       solve_rows.push_back(std::move(row));
     }
   }
+}
+
+// The rows of `from` whose load step is at most last_step.
+void append_rows_up_to(const toml::array* from, int last_step, toml::array& to) {
+  if (!from) return;
+  for (const auto& node : *from)
+    if (const auto* row = node.as_table(); row && (*row)["step"].value<int64_t>().value_or(0) <= last_step)
+      to.push_back(*row);
+}
+
+}  // namespace
+
+std::optional<EarlierSegments> read_earlier_segments(const std::string& path, const std::string& scene, int level,
+                                                     const std::string& solver, int last_step) {
+  if (!std::filesystem::exists(path)) return std::nullopt;
+  toml::table doc;
+  try {
+    doc = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    throw Error(fmt::format("metrics file '{}' of the run to continue does not read: {}", path, e.description()));
+  }
+  const auto* run = doc["run"].as_table();
+  const std::string its_scene = run ? (*run)["scene"].value<std::string>().value_or("") : "";
+  const int its_level = run ? static_cast<int>((*run)["level"].value<int64_t>().value_or(-1)) : -1;
+  const std::string its_solver = run ? (*run)["solver"].value<std::string>().value_or("") : "";
+  if (its_scene != scene || its_level != level || its_solver != solver)
+    throw Error(fmt::format("metrics file '{}' is of scene '{}' level {} solver '{}', not of the run it continues "
+                            "('{}' level {} '{}'): give another --metrics path",
+                            path, its_scene, its_level, its_solver, scene, level, solver));
+  EarlierSegments e;
+  append_rows_up_to(doc["step"].as_array(), last_step, e.steps);
+  append_rows_up_to(doc["linear_solve"].as_array(), last_step, e.linear_solves);
+  e.wall_seconds = (*run)["wall_seconds"].value<double>().value_or(0);
+  e.peak_rss_mb = (*run)["peak_rss_mb"].value<double>().value_or(0);
+  e.peak_rss_mb_sum = (*run)["peak_rss_mb_sum"].value<double>().value_or(0);
+  e.segments = static_cast<int>((*run)["segments"].value<int64_t>().value_or(1));
+  return e;
+}
+
+void write_metrics(const std::string& path, const scene::Scene& scene, const RunSummary& summary,
+                   const std::vector<nonlinear::StepResult>& steps, const EarlierSegments* earlier) {
+  const auto& space = *scene.space;
+  toml::array step_rows, solve_rows;
+  if (earlier) step_rows = earlier->steps, solve_rows = earlier->linear_solves;
+  append_rows(steps, step_rows, solve_rows);
+  // The run's totals, summed over the rows of every segment.
+  long newton = 0, krylov = 0;
+  double assembly = 0, setup = 0, solve = 0;
+  int completed = 0, cuts = 0;
+  for (const auto& node : step_rows) {
+    const auto& s = *node.as_table();
+    completed += s["completes_step"].value<bool>().value_or(false) ? 1 : 0;
+    cuts += s["retried"].value<bool>().value_or(false) ? 1 : 0;
+    newton += s["newton_iterations"].value<int64_t>().value_or(0);
+  }
+  for (const auto& node : solve_rows) {
+    const auto& s = *node.as_table();
+    krylov += s["krylov_iterations"].value<int64_t>().value_or(0);
+    assembly += s["assembly_seconds"].value<double>().value_or(0);
+    setup += s["setup_seconds"].value<double>().value_or(0);
+    solve += s["solve_seconds"].value<double>().value_or(0);
+  }
+  const long solves = static_cast<long>(solve_rows.size());
+  double peak = summary.processes > 1 ? summary.peak_rss_mb_max : peak_resident_mb();
+  double peak_sum = summary.peak_rss_mb_sum;
+  if (earlier) peak = std::max(peak, earlier->peak_rss_mb), peak_sum = std::max(peak_sum, earlier->peak_rss_mb_sum);
   int64_t multipliers = 0;
   for (const auto& c : scene.contacts) multipliers += c->n_multipliers();
   const auto [l0, l1] = space.linear_block();
@@ -77,16 +133,17 @@ void write_metrics(const std::string& path, const scene::Scene& scene, const Run
                   {"newton_iterations", newton},
                   {"linear_solves", solves},
                   {"krylov_iterations", krylov},
-                  {"wall_seconds", summary.wall_seconds},
+                  {"wall_seconds", summary.wall_seconds + (earlier ? earlier->wall_seconds : 0.0)},
+                  {"segments", earlier ? earlier->segments + 1 : 1},
                   {"assembly_seconds", assembly},
                   {"setup_seconds", setup},
                   {"solve_seconds", solve},
                   {"newton_rtol", scene.newton.rtol},
                   {"newton_forcing", nonlinear::to_string(scene.newton.forcing)},
                   {"processes", summary.processes},
-                  {"peak_rss_mb", summary.processes > 1 ? summary.peak_rss_mb_max : peak_resident_mb()},
+                  {"peak_rss_mb", peak},
                   {"backend_options", summary.backend_options}};
-  if (summary.processes > 1) run.insert("peak_rss_mb_sum", summary.peak_rss_mb_sum);
+  if (summary.processes > 1) run.insert("peak_rss_mb_sum", peak_sum);
   toml::table doc{{"run", std::move(run)}, {"step", std::move(step_rows)}, {"linear_solve", std::move(solve_rows)}};
   const std::string tmp = path + ".tmp";
   {
@@ -95,6 +152,40 @@ void write_metrics(const std::string& path, const scene::Scene& scene, const Run
     out << doc << "\n";
   }
   if (std::rename(tmp.c_str(), path.c_str()) != 0) throw Error(fmt::format("cannot write metrics file '{}'", path));
+}
+RunRecorder::RunRecorder(std::string path, const scene::Scene& scene, RunSummary base, MPI_Comm comm,
+                         std::optional<EarlierSegments> earlier, std::chrono::steady_clock::time_point start)
+    : path_(std::move(path)),
+      scene_(scene),
+      base_(std::move(base)),
+      comm_(comm),
+      earlier_(std::move(earlier)),
+      start_(start) {}
+
+void RunRecorder::add(const nonlinear::StepResult& attempt) {
+  attempts_.push_back(attempt);
+  if (attempt.completes_step)
+    write(false, "INCOMPLETE", fmt::format("recorded after load step {}; the run had not ended", attempt.step));
+}
+
+void RunRecorder::finish() {
+  if (attempts_.empty()) return;  // nothing ran: the earlier record stands
+  const auto& last = attempts_.back();
+  write(last.converged(), last.converged() ? "CONVERGED" : nonlinear::to_string(last.reason), last.detail);
+}
+
+void RunRecorder::write(bool converged, const std::string& reason, const std::string& detail) {
+  RunSummary summary = base_;
+  summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  summary.converged = converged;
+  summary.reason = reason;
+  summary.detail = detail;
+  const double peak = peak_resident_mb();
+  MPI_Reduce(&peak, &summary.peak_rss_mb_max, 1, MPI_DOUBLE, MPI_MAX, 0, comm_);
+  MPI_Reduce(&peak, &summary.peak_rss_mb_sum, 1, MPI_DOUBLE, MPI_SUM, 0, comm_);
+  int rank = 0;
+  MPI_Comm_rank(comm_, &rank);
+  if (rank == 0) write_metrics(path_, scene_, summary, attempts_, earlier_ ? &*earlier_ : nullptr);
 }
 
 double seconds_per_converged_solve(const toml::array* linear_solves) {

@@ -59,7 +59,10 @@ SolveRun run_solve_child(const std::string& scene, int level, const std::vector<
     r.newton = (*m)["newton_iterations"].value<double>().value_or(0);
     r.solves = (*m)["linear_solves"].value<double>().value_or(0);
     r.krylov = (*m)["krylov_iterations"].value<double>().value_or(0);
-    r.wall_seconds = (*m)["wall_seconds"].value<double>().value_or(r.wall_seconds);
+    // A run that did not end by itself left the record of its last completed load step: its
+    // wall time is the child's, up to the kill.
+    if (r.status == "ok" || r.status == "newton-failed")
+      r.wall_seconds = (*m)["wall_seconds"].value<double>().value_or(r.wall_seconds);
     r.linear_seconds =
         (*m)["setup_seconds"].value<double>().value_or(0) + (*m)["solve_seconds"].value<double>().value_or(0);
   }

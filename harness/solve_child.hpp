@@ -16,7 +16,8 @@ struct SolveRun {
   std::string reason, detail;
   double newton = 0, solves = 0, krylov = 0, linear_seconds = 0;
   // The run's own wall time, from its start to its last output (the child's is counted by a
-  // 200 ms poll and holds the process's start-up); the child's when the run wrote none.
+  // 200 ms poll and holds the process's start-up); the child's when the run wrote none or was
+  // stopped (its record then ends at its last completed load step).
   double wall_seconds = 0;
 };
 

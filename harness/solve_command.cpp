@@ -146,9 +146,20 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
     write_pvtu(out_dir + "/" + stem + ".pvtu", *scene, newton.displacement(), newton.multipliers(), r.time, pieces);
     pvd->add(r.time, stem + ".pvtu");
   };
+  std::unique_ptr<RunRecorder> record;
+  if (!o.metrics_path.empty()) {
+    RunSummary base{o.solver, solvers::default_options(o.solver) + o.petsc_options};
+    base.processes = processes;
+    record = std::make_unique<RunRecorder>(
+        o.metrics_path, *scene, base, PETSC_COMM_WORLD,
+        restart ? read_earlier_segments(o.metrics_path, scene->name, scene->level, o.solver, resume.state.step)
+                : std::nullopt,
+        t_start);
+  }
   auto results = newton.run([&](const nonlinear::StepResult& r) {
     if (table) table->add(r, *scene);
     if (iteration_table) iteration_table->add(r);
+    if (record) record->add(r);  // before the checkpoint
     if (r.completes_step && writer) write_checkpoint(out_dir + "/checkpoint.bin",
                                               {scene->name, scene->level, newton.state(), newton.linear_tally()});
     if (contact_table && r.completes_step) contact_table->add(r, *scene, newton.displacement(), newton.multipliers());
@@ -167,17 +178,7 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   const std::string description = solver->describe();  // collective: a KSP view
   if (writer) std::ofstream(out_dir + "/solver.txt") << description;
   const auto& last = results.back();
-  if (!o.metrics_path.empty()) {
-    RunSummary summary{o.solver, solvers::default_options(o.solver) + o.petsc_options,
-                       std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count(),
-                       last.converged(), last.converged() ? "CONVERGED" : nonlinear::to_string(last.reason),
-                       last.detail};
-    summary.processes = processes;
-    const double peak = peak_resident_mb();
-    MPI_Reduce(&peak, &summary.peak_rss_mb_max, 1, MPI_DOUBLE, MPI_MAX, 0, PETSC_COMM_WORLD);
-    MPI_Reduce(&peak, &summary.peak_rss_mb_sum, 1, MPI_DOUBLE, MPI_SUM, 0, PETSC_COMM_WORLD);
-    if (writer) write_metrics(o.metrics_path, *scene, summary, results);
-  }
+  if (record) record->finish();
   if (!last.converged())
     throw Error(fmt::format("Newton did not converge at load step {} of scene '{}': {}{}{}", last.step, scene->name,
                             nonlinear::to_string(last.reason), last.detail.empty() ? "" : ": ", last.detail),
