@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -148,7 +149,11 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   };
   std::unique_ptr<RunRecorder> record;
   if (!o.metrics_path.empty()) {
-    RunSummary base{o.solver, solvers::default_options(o.solver) + o.petsc_options};
+    // The options the backend ran with: its defaults, then PETSC_OPTIONS, then the command line's.
+    const char* environment = std::getenv("PETSC_OPTIONS");
+    RunSummary base{o.solver, solvers::default_options(o.solver) +
+                                  (environment && *environment ? fmt::format("# PETSC_OPTIONS\n{}\n", environment) : std::string()) +
+                                  o.petsc_options};
     base.processes = processes;
     record = std::make_unique<RunRecorder>(
         o.metrics_path, *scene, base, PETSC_COMM_WORLD,

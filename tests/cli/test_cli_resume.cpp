@@ -126,10 +126,16 @@ toml::table run_table(const fs::path& metrics) { return *toml::parse_file(metric
 // run, its rows once each, two segments.
 TEST_F(ResumedRun, RestartedSolveContinuesTheRecordOfTheKilledRun) {
   const fs::path whole = dir_ / "whole", part = dir_ / "part";
+  // Options from the environment are options the backend ran with: the record names them.
+  setenv("PETSC_OPTIONS", "-lu_mumps_mat_mumps_icntl_14 40", 1);
   const CliRun straight = CliRun::of({"solve", scene_.string(), "--quiet", "--no-vtu", "--out", whole.string(),
                                       "--metrics", (whole / "metrics.toml").string()},
                                      dir_);
+  unsetenv("PETSC_OPTIONS");
   ASSERT_EQ(straight.exit_code, 0) << straight.err;
+  EXPECT_NE(run_table(whole / "metrics.toml")["backend_options"].value<std::string>().value_or("").find(
+                "# PETSC_OPTIONS\n-lu_mumps_mat_mumps_icntl_14 40\n"),
+            std::string::npos);
 
   fs::create_directories(part);
   ASSERT_TRUE(run_and_kill_after_first_step({"solve", scene_.string(), "--quiet", "--no-vtu", "--out", part.string(),
