@@ -247,14 +247,9 @@ std::string time_left(const std::vector<Run>& runs, size_t current, double elaps
   return text;
 }
 
-}  // namespace
-
-void run_bench(const BenchOptions& o, const RunInfo& info) {
-  std::vector<std::string> scenes = o.scenes, solvers_list = o.solvers;
-  if (scenes.empty())
-    for (const auto& [name, text] : builtin_scenes()) scenes.push_back(name);
-  if (solvers_list.empty())
-    for (const auto& b : solvers::backends()) solvers_list.push_back(b.name);
+// Refuses, before any run, a sweep that would fail or silently ignore part of itself.
+void check_sweep(const BenchOptions& o, const std::vector<std::string>& scenes,
+                 const std::vector<std::string>& solvers_list) {
   for (const auto& s : scenes)
     if (!builtin_scenes().count(s) && !fs::is_regular_file(s))
       throw Error(fmt::format("scene '{}' is neither a file nor a built-in scene", s));
@@ -280,6 +275,56 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
     for (const auto& s : solvers_list) matches |= opt.rfind("-" + solvers::options_prefix(s), 0) == 0;
     if (!matches) throw Error(fmt::format("PETSc option '{}' matches none of the backends of this sweep", opt));
   }
+}
+
+// The comment lines a new sweep's CSVs start with: how the sweep was made.
+std::string sweep_header(const BenchOptions& o, const RunInfo& info, const ChildLimits& limits,
+                         const std::vector<std::string>& solvers_list) {
+  std::string header = format_run_info(info, "# ");
+  header += fmt::format("# limits per run: {:.0f} s, {:.0f} MB resident\n", limits.seconds, limits.memory_mb);
+  for (const auto& s : solvers_list)
+    header += fmt::format("# backend {} options: {}\n", s, solvers::compact_options(s));
+  for (const auto& opt : o.petsc_options) header += "# petsc option: " + opt + "\n";
+  header += fmt::format("# MPI processes per run: {} (this machine: {} cores)\n", fmt::join(o.ranks, ", "),
+                        std::thread::hardware_concurrency());
+  header += "# newton forcing: " + (o.forcing.empty() ? std::string("as each scene sets it") : o.forcing) + "\n";
+  header += "# newton rtol: as each scene sets it (newton.rtol; the runs' newton_rtol column)\n";
+  header += "# krylov rtol: " +
+            (o.krylov_rtol < 0 ? std::string("as each scene sets it (newton.krylov_rtol, else the backend's)")
+                               : fmt::format("{:g}", o.krylov_rtol)) +
+            "\n";
+  return header;
+}
+
+// The child's command line: `stiction solve` of the run into run_dir (continued from its
+// checkpoint there when `continued`), with the sweep's settings and the PETSc options whose
+// prefix is the run's backend.
+std::vector<std::string> child_arguments(const BenchOptions& o, const Run& run, const std::string& exe,
+                                         const std::string& run_dir, bool continued) {
+  std::vector<std::string> argv{exe,        "solve",    run.scene,  "--level",   std::to_string(run.level),
+                                "--solver", run.solver, continued ? "--restart" : "--out", run_dir, "--quiet",
+                                "--no-vtu", "--metrics", run_dir + "/metrics.toml"};
+  if (!o.forcing.empty()) argv.insert(argv.end(), {"--forcing", o.forcing});
+  if (o.krylov_rtol >= 0) argv.insert(argv.end(), {"--krylov-rtol", fmt::format("{:g}", o.krylov_rtol)});
+  if (o.quick) argv.push_back("--quick");
+  for (size_t k = 0; k < o.petsc_options.size(); ++k)
+    if (o.petsc_options[k].rfind("-" + solvers::options_prefix(run.solver), 0) == 0) {
+      std::istringstream words(o.petsc_options[k]);
+      std::string w;
+      while (words >> w) argv.push_back(w);
+    }
+  return argv;
+}
+
+}  // namespace
+
+void run_bench(const BenchOptions& o, const RunInfo& info) {
+  std::vector<std::string> scenes = o.scenes, solvers_list = o.solvers;
+  if (scenes.empty())
+    for (const auto& [name, text] : builtin_scenes()) scenes.push_back(name);
+  if (solvers_list.empty())
+    for (const auto& b : solvers::backends()) solvers_list.push_back(b.name);
+  check_sweep(o, scenes, solvers_list);
 
   const std::string out = o.out_dir;
   std::error_code ec;
@@ -291,19 +336,7 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
   const ChildLimits limits = sweep_limits(o.time_limit_seconds, o.memory_limit_mb);
   std::string header;  // of a new sweep (steps.csv gets it too)
   const CsvTable previous = open_sweep_table(runs_csv, kRunColumns, o.resume, info, [&] {
-    header = format_run_info(info, "# ");
-    header += fmt::format("# limits per run: {:.0f} s, {:.0f} MB resident\n", limits.seconds, limits.memory_mb);
-    for (const auto& s : solvers_list)
-      header += fmt::format("# backend {} options: {}\n", s, solvers::compact_options(s));
-    for (const auto& opt : o.petsc_options) header += "# petsc option: " + opt + "\n";
-    header += fmt::format("# MPI processes per run: {} (this machine: {} cores)\n", fmt::join(o.ranks, ", "),
-                          std::thread::hardware_concurrency());
-    header += "# newton forcing: " + (o.forcing.empty() ? std::string("as each scene sets it") : o.forcing) + "\n";
-    header += "# newton rtol: as each scene sets it (newton.rtol; the runs' newton_rtol column)\n";
-    header += "# krylov rtol: " +
-              (o.krylov_rtol < 0 ? std::string("as each scene sets it (newton.krylov_rtol, else the backend's)")
-                                 : fmt::format("{:g}", o.krylov_rtol)) +
-              "\n";
+    header = sweep_header(o, info, limits, solvers_list);
     return header;
   });
   for (const auto& row : previous.rows) {
@@ -341,18 +374,7 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
       fmt::print(stderr, "bench [{}/{}] {} {} L{}{}: continued from its checkpoint after load step {}\n", index,
                  runs.size(), run.scene, run.solver, run.level, on, continued->last_step);
     }
-    std::vector<std::string> argv{exe,        "solve",    run.scene,  "--level",   std::to_string(run.level),
-                                  "--solver", run.solver, continued ? "--restart" : "--out", run_dir, "--quiet",
-                                  "--no-vtu", "--metrics", run_dir + "/metrics.toml"};
-    if (!o.forcing.empty()) argv.insert(argv.end(), {"--forcing", o.forcing});
-    if (o.krylov_rtol >= 0) argv.insert(argv.end(), {"--krylov-rtol", fmt::format("{:g}", o.krylov_rtol)});
-    if (o.quick) argv.push_back("--quick");
-    for (size_t k = 0; k < o.petsc_options.size(); ++k)
-      if (o.petsc_options[k].rfind("-" + solvers::options_prefix(run.solver), 0) == 0) {
-        std::istringstream words(o.petsc_options[k]);
-        std::string w;
-        while (words >> w) argv.push_back(w);
-      }
+    const std::vector<std::string> argv = child_arguments(o, run, exe, run_dir, continued.has_value());
     int last_step = -1;
     double last_print = -1e9;
     const auto on_tick = [&](double t) {
