@@ -40,7 +40,7 @@ const char* kRunColumns =
     "cells,load_steps,"
     "load_steps_completed,newton_iterations,linear_solves,krylov_iterations,krylov_per_linear_solve,wall_seconds,"
     "assembly_seconds,setup_seconds,solve_seconds,seconds_per_linear_solve,peak_rss_mb,peak_rss_mb_per_process,mumps_memory_mb,"
-    "amg_operator_complexity,krylov_rtol,mumps_ordering,newton_rtol,newton_forcing,detail";
+    "amg_operator_complexity,krylov_rtol,mumps_ordering,newton_rtol,newton_forcing,petsc_options,detail";
 const char* kStepColumns =
     "scene,level,solver,processes,step,newton_iteration,converged,reason,krylov_iterations,initial_residual,final_residual,"
     "assembly_seconds,setup_seconds,solve_seconds";
@@ -123,7 +123,7 @@ std::optional<Interrupted> interrupted_run(const Run& run, const std::string& ru
 
 // Appends the run's row to runs.csv and its linear solves to steps.csv; returns its wall time.
 double write_rows(const std::string& out, const Run& run, const ChildResult& child, const std::string& run_dir,
-                  const std::optional<Interrupted>& continued) {
+                  const std::string& petsc_options, const std::optional<Interrupted>& continued) {
   const std::string metrics_path = run_dir + "/metrics.toml";
   toml::table metrics;
   bool have_metrics = fs::exists(metrics_path);
@@ -183,7 +183,7 @@ double write_rows(const std::string& out, const Run& run, const ChildResult& chi
   const std::string row = fmt::format(
       "{},{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.2f},{:.3f},"
       "{:.3f},{:.3f},{:.3f},{:.4f},"
-      "{:.1f},{:.1f},{:.0f},{:.3f},{},{},{},{},{}",
+      "{:.1f},{:.1f},{:.0f},{:.3f},{},{},{},{},{},{}",
       run.scene, run.level, run.solver, run.processes, status, m["converged"].value<bool>().value_or(false) ? 1 : 0,
       csv_field(m["reason"].value<std::string>().value_or(status)), num("unknowns"), num("unknowns_u_l"),
       num("unknowns_u_q"), num("unknowns_p"), num("multipliers"), num("vertices"), num("cells"), num("load_steps"), num("load_steps_completed"), num("newton_iterations"), solves,
@@ -192,7 +192,7 @@ double write_rows(const std::string& out, const Run& run, const ChildResult& chi
       seconds_per_converged_solve(metrics["linear_solve"].as_array()), peak_total, peak_per_process, mumps,
       n_complexity ? complexity / n_complexity : 0.0, krylov_rtol > 0 ? fmt::format("{:g}", krylov_rtol) : "",
       ordering, m["newton_rtol"] ? fmt::format("{:g}", num("newton_rtol")) : std::string(),
-      m["newton_forcing"].value<std::string>().value_or(""), csv_field(detail));
+      m["newton_forcing"].value<std::string>().value_or(""), csv_field(petsc_options), csv_field(detail));
   if (!steps.empty()) append_durably(out + "/steps.csv", steps);
   append_durably(out + "/runs.csv", row);
   return wall;
@@ -296,6 +296,14 @@ std::string sweep_header(const BenchOptions& o, const RunInfo& info, const Child
   return header;
 }
 
+// The sweep's PETSc options that go to this backend (those with its prefix), space-joined.
+std::string options_for(const BenchOptions& o, const std::string& solver) {
+  std::vector<std::string> mine;
+  for (const auto& option : o.petsc_options)
+    if (option.rfind("-" + solvers::options_prefix(solver), 0) == 0) mine.push_back(option);
+  return fmt::format("{}", fmt::join(mine, " "));
+}
+
 // The child's command line: `stiction solve` of the run into run_dir (continued from its
 // checkpoint there when `continued`), with the sweep's settings and the PETSc options whose
 // prefix is the run's backend.
@@ -307,12 +315,8 @@ std::vector<std::string> child_arguments(const BenchOptions& o, const Run& run, 
   if (!o.forcing.empty()) argv.insert(argv.end(), {"--forcing", o.forcing});
   if (o.krylov_rtol >= 0) argv.insert(argv.end(), {"--krylov-rtol", fmt::format("{:g}", o.krylov_rtol)});
   if (o.quick) argv.push_back("--quick");
-  for (size_t k = 0; k < o.petsc_options.size(); ++k)
-    if (o.petsc_options[k].rfind("-" + solvers::options_prefix(run.solver), 0) == 0) {
-      std::istringstream words(o.petsc_options[k]);
-      std::string w;
-      while (words >> w) argv.push_back(w);
-    }
+  std::istringstream words(options_for(o, run.solver));
+  for (std::string w; words >> w;) argv.push_back(w);
   return argv;
 }
 
@@ -391,7 +395,7 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
     if (continued) run_limits.seconds = std::max(limits.seconds - continued->wall_seconds, 1.0);
     const ChildResult child = run_child(argv, run_dir + "/stdout.txt", run_dir + "/stderr.txt", run_limits, on_tick,
                                         launcher_for(run.processes));
-    const double wall = write_rows(out, run, child, run_dir, continued);
+    const double wall = write_rows(out, run, child, run_dir, options_for(o, run.solver), continued);
     const std::string status = solve_status(child, fs::exists(run_dir + "/metrics.toml"));
     if (status == "ok") finished_runs.add(run, wall);
     fmt::print(stderr, "bench [{}/{}] {} {} L{}{}: {} in {:.1f} s, peak {:.0f} MB\n", index, runs.size(), run.scene,

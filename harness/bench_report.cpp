@@ -13,6 +13,7 @@
 #include "ksp_solver.hpp"
 #include "paper_tables.hpp"
 #include "scaling_plots.hpp"
+#include "sweep_table.hpp"
 
 namespace stiction::harness {
 
@@ -120,7 +121,7 @@ void write_bench_report(const std::string& out_dir) {
         if (q.at("solver") == "lu-mumps" && q.at("level") == r.at("level") && finished(q)) ref = &q;
       const bool ok = finished(r);
       md += fmt::format("| {} | {} | {} | {:.0f} | {} | {} | {} | {} | {} | {} | {} | {} |\n", r.at("level"), r.at("solver"),
-                        r.at("status") == "ok" ? "ok" : r.at("status") + (r.at("detail").empty() ? "" : ": " + r.at("detail")),
+                        run_status_text(r),
                         number(r, "unknowns") + number(r, "multipliers"), cell(r, "wall_seconds", "{:.1f}"), number(r, "seconds_per_linear_solve") > 0 ? cell(r, "seconds_per_linear_solve", "{:.3f}") : "—",
                         ok ? fmt::format("{:.0f}", number(r, "peak_rss_mb")) : "—", cell(r, "newton_iterations", "{:.0f}"),
                         cell(r, "linear_solves", "{:.0f}"), cell(r, "krylov_per_linear_solve", "{:.1f}"),

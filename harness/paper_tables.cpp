@@ -1,6 +1,7 @@
 #include "paper_tables.hpp"
 
 #include "memory_breakdown.hpp"
+#include "sweep_table.hpp"
 
 #include <fmt/format.h>
 
@@ -108,9 +109,8 @@ std::string time_table(const std::vector<Row>& runs, const std::string& out_dir,
         for (int k = 0; k < 3; ++k) diff += std::pow((*f)[k] - (*lu_force)[k], 2), size += std::pow((*lu_force)[k], 2);
         force = size > 0 ? fmt::format("{:.1e}", std::sqrt(diff / size)) : "—";
       }
-      std::string status = r.at("status");
-      if (!done && !r.at("detail").empty()) status += ": " + r.at("detail");
-      md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", level, r.at("solver"), status,
+      md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", level, r.at("solver"),
+                        run_status_text(r),
                         done ? fixed(number(r, "wall_seconds"), 1) : "—",
                         done ? fixed(number(r, "seconds_per_linear_solve"), 3) : "—",
                         done ? fixed(number(r, "peak_rss_mb"), 0) : "—",

@@ -64,4 +64,14 @@ CsvTable open_sweep_table(const std::string& path, const std::string& columns, b
   return previous;
 }
 
+std::string run_status_text(const std::map<std::string, std::string>& row) {
+  const std::string& status = row.at("status");
+  if (status == "ok") {
+    const auto options = row.find("petsc_options");
+    return options == row.end() || options->second.empty() ? "ok" : "ok (" + options->second + ")";
+  }
+  const std::string& detail = row.at("detail");
+  return detail.empty() ? status : status + ": " + detail;
+}
+
 }  // namespace stiction::harness

@@ -3,6 +3,7 @@
 // provenance header and columns, or continued (--resume) when it has no column this
 // version does not write.
 #include <functional>
+#include <map>
 #include <string>
 
 #include "csv_table.hpp"
@@ -17,5 +18,10 @@ namespace stiction::harness {
 // is appended.
 CsvTable open_sweep_table(const std::string& path, const std::string& columns, bool resume, const RunInfo& info,
                           const std::function<std::string()>& header);
+
+// A bench run's status as the report tables show it: "ok", followed by the PETSc options the
+// sweep gave its backend beyond its defaults (the petsc_options column) when there are any;
+// otherwise the status and what stopped the run.
+std::string run_status_text(const std::map<std::string, std::string>& row);
 
 }  // namespace stiction::harness

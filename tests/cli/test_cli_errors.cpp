@@ -719,6 +719,24 @@ TEST_F(StictionCli, BenchRowsNameTheMumpsOrderingAndResumeAnOlderSweep) {
   EXPECT_EQ(refused.error_lines().size(), 1u) << refused.err;
 }
 
+// A row names the PETSc options the sweep gave its backend beyond the defaults, and the
+// report shows them beside the status, so that rows run with other settings are told apart.
+TEST_F(StictionCli, BenchRowsNameThePetscOptionsTheirBackendRanWith) {
+  const CliRun sweep = CliRun::of({"bench", "--scenes", "cantilever-2d", "--solvers", "lu-mumps,lu-umfpack", "--quick",
+                                   "--out", (dir_ / "sweep").string(), "-lu_mumps_mat_mumps_icntl_14", "40"},
+                                  dir_);
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+  std::map<std::string, std::string> options;
+  for (const auto& row : stiction::harness::read_csv((dir_ / "sweep" / "runs.csv").string()).rows)
+    options[row.at("solver")] = row.at("petsc_options");
+  ASSERT_EQ(options.size(), 2u);
+  EXPECT_EQ(options["lu-mumps"], "-lu_mumps_mat_mumps_icntl_14 40");
+  EXPECT_EQ(options["lu-umfpack"], "");
+  const std::string report = read_file(dir_ / "sweep" / "report.md");
+  EXPECT_NE(report.find("| lu-mumps | ok (-lu_mumps_mat_mumps_icntl_14 40) |"), std::string::npos) << report;
+  EXPECT_NE(report.find("| lu-umfpack | ok |"), std::string::npos) << report;
+}
+
 // A pair of keys is swept together: every value of one with every value of the other, each
 // cell's run getting both settings (friction changes the Newton count of the converged cells,
 // one Newton iteration fails every cell), and the report shows one grid per backend.
