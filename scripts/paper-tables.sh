@@ -7,9 +7,15 @@
 #   runs.csv, steps.csv   the sweep's rows (kept as runs finish)
 #   contact-states-*.png  the deformed strips coloured by contact state at the last load
 #                         step (the paper's Figures 11 and 12), from the schur-amg runs
-# BENCH_LEVELS (default 0,1; 0,1,2 gives the full tables), BENCH_SOLVERS (default: every
-# backend), BENCH_TIME_LIMIT (seconds per run, default 3600) and BENCH_RESUME=1 (continue
-# an interrupted sweep) adjust it; BENCH_OUT moves it.
+# BENCH_LEVELS (default 0,1; 0,1,2 gives the full tables), BENCH_SCENES (default both),
+# BENCH_SOLVERS (default: every backend), BENCH_TIME_LIMIT (seconds per run, default 3600),
+# BENCH_PETSC_OPTIONS (PETSc options for the backends whose prefix they carry; each row
+# names those it ran with) and BENCH_RESUME=1 (continue an interrupted sweep, a killed run
+# from its checkpoint) adjust it; BENCH_OUT moves it. The level-2 rows, resumable over
+# several sittings (about 3 hours each on 2 cores), with the Krylov restart that keeps
+# schur-amg under 6 GB there:
+#   BENCH_LEVELS=2 BENCH_SOLVERS=schur-amg BENCH_RESUME=1 BENCH_TIME_LIMIT=36000 \
+#   BENCH_PETSC_OPTIONS="-schur_amg_ksp_gmres_restart 50" make bench
 set -euo pipefail
 build=${1:-build}
 out=${BENCH_OUT:-reports/paper-tables}
@@ -19,8 +25,9 @@ source "$(dirname "$0")/ensure-gnuplot.sh"
 source "$(dirname "$0")/prepare-sweep-dir.sh"
 solvers=()
 [ -n "${BENCH_SOLVERS:-}" ] && solvers=(--solvers "$BENCH_SOLVERS")
-"$build/stiction" bench --scenes block-strips,block-strips-mr --levels "${BENCH_LEVELS:-0,1}" "${solvers[@]}" \
-  --time-limit "${BENCH_TIME_LIMIT:-3600}" --out "$out" "${resume[@]}"
+read -r -a petsc_options <<< "${BENCH_PETSC_OPTIONS:-}"
+"$build/stiction" bench --scenes "${BENCH_SCENES:-block-strips,block-strips-mr}" --levels "${BENCH_LEVELS:-0,1}" \
+  "${solvers[@]}" --time-limit "${BENCH_TIME_LIMIT:-3600}" --out "$out" "${resume[@]}" "${petsc_options[@]}"
 
 # Contact states at the last load step of each schur-amg run (Debian's python3-matplotlib).
 for run in "$out"/runs/block-strips*-schur-amg; do
