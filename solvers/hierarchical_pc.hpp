@@ -49,7 +49,8 @@ public:
   // Writes x's u_l and u_q parts only (other blocks of x are left as they are).
   void apply(Vec r, Vec x) const override;
 
-  void set_form(SchurForm form) { form_ = form; }  // Lower (default) or Full
+  // Lower (default) or Full; -<prefix>hp_fact lower|full, when given, overrides it at set-up.
+  void set_form(SchurForm form) { form_ = form; }
   SchurForm form() const { return form_; }
   // Replaces the operator of the quadratic-block solver (default A_qq), e.g. by the exact
   // Schur complement in verification tests. Call after setup().

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "builtin_scenes.hpp"
+#include "common/error.hpp"
 #include "hierarchical_pc.hpp"
 #include "nonlinear/newton.hpp"
 #include "registry.hpp"
@@ -31,6 +32,33 @@ TEST(HierarchicalPreconditioner, LowerFormWithExactBlocksNeedsTwoIterations) {
   double residual;
   EXPECT_LE(iterations_with_exact_blocks(SchurForm::Lower, &residual), 2);
   EXPECT_LT(residual, 1e-10);
+}
+
+// -<prefix>hp_fact picks the form at set-up (over set_form): with exact blocks, lower needs
+// two iterations and full one; another value is an error.
+TEST(HierarchicalPreconditioner, HpFactOptionPicksTheForm) {
+  test::StepSystem s("cantilever-2d");
+  const auto& sys = s.system();
+  test::ExactHierarchical exact(sys, "hp_fact_test_");
+  auto iterations_with = [&](const char* fact) {
+    test::set_options("hp_fact_test_", {{"hp_fact", fact}});
+    exact.hp.setup(sys.matrix, sys.field("u_l")->is, sys.field("u_q")->is, sys.near_null_space,
+                   sys.field("u_l")->block_size);
+    exact.hp.set_quadratic_operator(exact.schur);
+    double residual;
+    const int its = test::gmres_iterations(sys, exact.hp, &residual);
+    EXPECT_LT(residual, 1e-10) << fact;
+    return its;
+  };
+  EXPECT_EQ(iterations_with("lower"), 2);
+  EXPECT_EQ(exact.hp.form(), SchurForm::Lower);
+  EXPECT_EQ(iterations_with("full"), 1);
+  EXPECT_EQ(exact.hp.form(), SchurForm::Full);
+  test::set_options("hp_fact_test_", {{"hp_fact", "upper"}});
+  EXPECT_THROW(exact.hp.setup(sys.matrix, sys.field("u_l")->is, sys.field("u_q")->is, sys.near_null_space,
+                              sys.field("u_l")->block_size),
+               Error);
+  PetscOptionsClearValue(nullptr, "-hp_fact_test_hp_fact");
 }
 
 TEST(HierarchicalPreconditioner, PaperSettingsConvergeInAFewDozenIterations) {
