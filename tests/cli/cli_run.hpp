@@ -1,6 +1,8 @@
 #pragma once
 // Runs the `stiction` executable as a child process for the CLI tests: exit code (128 +
 // signal if it was killed) and captured stderr, with a timeout so a hang fails the test.
+#include <gtest/gtest.h>
+#include <stdlib.h>
 #include <sys/wait.h>
 
 #include <cstdlib>
@@ -44,6 +46,12 @@ inline std::string without_mpi_environment() {
       prefix += " -u " + name;
   }
   return prefix;
+}
+
+// A fresh directory under the test's temporary directory (stem-XXXXXX); empty on failure.
+inline fs::path make_temporary_directory(const std::string& stem) {
+  std::string pattern = (fs::path(::testing::TempDir()) / (stem + "-XXXXXX")).string();
+  return mkdtemp(pattern.data()) ? fs::path(pattern) : fs::path();
 }
 
 // One run of the binary: exit code (128 + signal if it was killed) and captured stderr.

@@ -23,6 +23,7 @@
 
 #include "builtin_scenes.hpp"
 #include "cli_run.hpp"
+#include "cli_scenes.hpp"
 #include "checkpoint.hpp"
 #include "csv_table.hpp"
 #include "run_info.hpp"
@@ -42,71 +43,13 @@ const fs::path data_dir = STICTION_TEST_DATA_DIR;
 const fs::path data_dir = fs::path(__FILE__).parent_path().parent_path() / "data";
 #endif
 
-// harness/scenes/cantilever-2d.toml without its comments: solves in well under a second.
-constexpr const char* cantilever_2d = R"([scene]
-name = "cantilever-2d"
-description = "plane-strain Neo-Hookean cantilever under an end shear traction"
-
-[[material]]
-name = "soft"
-model = "neo-hookean"
-E = 1000.0
-nu = 0.3
-
-[[body]]
-name = "beam"
-material = "soft"
-mesh = { generator = "box", size = [10.0, 1.0], h = 0.25 }
-
-[[dirichlet]]
-boundary = "xmin"
-components = ["x", "y"]
-value = [0.0, 0.0]
-
-[[traction]]
-boundary = "xmax"
-value = [0.0, -1.0]
-
-[load]
-steps = 4
-)";
-
-// A variant of the cantilever-2d scene, edited by exact text replacement.
-struct SceneVariant {
-  std::string text = cantilever_2d;
-
-  SceneVariant& replace(const std::string& from, const std::string& to) {
-    const auto at = text.find(from);
-    if (at == std::string::npos) ADD_FAILURE() << "scene text has no '" << from << "'";
-    else text.replace(at, from.size(), to);
-    return *this;
-  }
-
-  SceneVariant& append(const std::string& more) {
-    text += more;
-    return *this;
-  }
-
-  // 1-based line of the first occurrence of `needle` (0 if absent).
-  int line_of(const std::string& needle) const {
-    const auto at = text.find(needle);
-    if (at == std::string::npos) return 0;
-    return 1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n'));
-  }
-
-  fs::path write(const fs::path& dir, const std::string& name) const {
-    const fs::path path = dir / name;
-    std::ofstream(path) << text;
-    return path;
-  }
-};
+using stiction::test::SceneVariant;
 
 class StictionCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    std::string pattern = (fs::path(::testing::TempDir()) / "stiction-cli-XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr) << "cannot create a temporary directory";
-    dir_ = pattern;
+    dir_ = stiction::test::make_temporary_directory("stiction-cli");
+    ASSERT_FALSE(dir_.empty()) << "cannot create a temporary directory";
   }
 
   void TearDown() override {

@@ -49,9 +49,8 @@ protected:
   void SetUp() override {
     mpirun_ = find_mpirun();
     ASSERT_FALSE(mpirun_.empty()) << "mpirun is not on PATH (Debian package openmpi-bin)";
-    std::string pattern = (fs::path(::testing::TempDir()) / "stiction-mpi-XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    dir_ = pattern;
+    dir_ = stiction::test::make_temporary_directory("stiction-mpi");
+    ASSERT_FALSE(dir_.empty()) << "cannot create a temporary directory";
   }
   void TearDown() override {
     std::error_code ignored;
@@ -267,9 +266,11 @@ TEST_F(StictionUnderMpirun, EachProcessWritesItsPieceOfTheSolutionAndRankZeroJoi
   for (double v : u) u_max = std::max(u_max, std::abs(v));
   ASSERT_GT(u_max, 0);
   // The PVTU declares every array the one-process file has, and the pieces' process number.
-  for (const auto& a : whole.arrays)
-    if (a.name != "Points" && a.name != "connectivity" && a.name != "offsets" && a.name != "types")
+  for (const auto& a : whole.arrays) {
+    if (a.name != "Points" && a.name != "connectivity" && a.name != "offsets" && a.name != "types") {
       EXPECT_NE(pvtu.find("Name=\"" + a.name + "\""), std::string::npos) << a.name << " not declared:\n" << pvtu;
+    }
+  }
 
   int cells = 0;
   for (int rank = 0; rank < 2; ++rank) {

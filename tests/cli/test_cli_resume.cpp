@@ -20,6 +20,7 @@
 
 #include "checkpoint.hpp"
 #include "cli_run.hpp"
+#include "cli_scenes.hpp"
 #include "csv_table.hpp"
 
 namespace {
@@ -28,44 +29,23 @@ namespace fs = std::filesystem;
 using stiction::test::CliRun;
 using stiction::test::read_file;
 
-// The cantilever-2d scene over 40 load steps: each step takes a few milliseconds, so a run
-// can be killed between two of them.
-constexpr const char* cantilever_40_steps = R"([scene]
-name = "cantilever-40"
-description = "plane-strain Neo-Hookean cantilever under an end shear traction, 40 load steps"
-
-[[material]]
-name = "soft"
-model = "neo-hookean"
-E = 1000.0
-nu = 0.3
-
-[[body]]
-name = "beam"
-material = "soft"
-mesh = { generator = "box", size = [10.0, 1.0], h = 0.25 }
-
-[[dirichlet]]
-boundary = "xmin"
-components = ["x", "y"]
-value = [0.0, 0.0]
-
-[[traction]]
-boundary = "xmax"
-value = [0.0, -4.0]
-
-[load]
-steps = 40
-)";
+// The cantilever-2d scene over 40 load steps under four times its load: each step takes a
+// few milliseconds, so a run can be killed between two of them.
+std::string cantilever_40_steps() {
+  return stiction::test::SceneVariant{}
+      .replace("steps = 4\n", "steps = 40\n")
+      .replace("value = [0.0, -1.0]", "value = [0.0, -4.0]")
+      .replace("name = \"cantilever-2d\"", "name = \"cantilever-40\"")
+      .text;
+}
 
 class ResumedRun : public ::testing::Test {
  protected:
   void SetUp() override {
-    std::string pattern = (fs::path(::testing::TempDir()) / "stiction-resume-XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr) << "cannot create a temporary directory";
-    dir_ = pattern;
+    dir_ = stiction::test::make_temporary_directory("stiction-resume");
+    ASSERT_FALSE(dir_.empty()) << "cannot create a temporary directory";
     scene_ = dir_ / "cantilever-40.toml";
-    std::ofstream(scene_) << cantilever_40_steps;
+    std::ofstream(scene_) << cantilever_40_steps();
   }
   void TearDown() override {
     std::error_code ignored;
