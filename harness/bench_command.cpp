@@ -94,6 +94,9 @@ std::string mumps_ordering_name(int code) {
 // steps, and `--resume` continues it from there instead of starting it again.
 struct Interrupted {
   int last_step = 0;           // the checkpoint's load step
+  // The run had ended (its record has a verdict; the sweep stopped before writing its row):
+  // the row comes from the record, and nothing runs again.
+  bool ended = false, converged = false;
   double wall_seconds = 0;     // of the earlier segments, up to their last completed load step
   double peak_rss_mb = 0;      // the largest of the earlier segments'
   int segments = 0;
@@ -113,6 +116,9 @@ std::optional<Interrupted> interrupted_run(const Run& run, const std::string& ru
     i.wall_seconds = (*m)["wall_seconds"].value<double>().value_or(0);
     i.peak_rss_mb = (*m)[run.processes > 1 ? "peak_rss_mb_sum" : "peak_rss_mb"].value<double>().value_or(0);
     i.segments = static_cast<int>((*m)["segments"].value<int64_t>().value_or(1));
+    const std::string reason = (*m)["reason"].value<std::string>().value_or("INCOMPLETE");
+    i.ended = reason != "INCOMPLETE";
+    i.converged = (*m)["converged"].value<bool>().value_or(false);
     return i;
   } catch (const toml::parse_error&) {
     return std::nullopt;
@@ -177,7 +183,10 @@ double write_rows(const std::string& out, const Run& run, const ChildResult& chi
     if (!several) peak_per_process = peak_total;
   }
   if (child.hit_time_limit) detail = fmt::format("stopped after {:.0f} s", wall);
-  if (continued)
+  if (continued && continued->ended)
+    detail += fmt::format("{}row from the run's record: the run had ended, the sweep had not written its row",
+                          detail.empty() ? "" : "; ");
+  else if (continued)
     detail += fmt::format("{}continued from its checkpoint after load step {} ({} segments; wall time and peak over all)",
                           detail.empty() ? "" : "; ", continued->last_step, continued->segments + 1);
   const std::string row = fmt::format(
@@ -374,6 +383,9 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
     if (!continued) {
       fs::remove_all(run_dir, ec);
       fs::create_directories(run_dir, ec);
+    } else if (continued->ended) {
+      fmt::print(stderr, "bench [{}/{}] {} {} L{}{}: had ended without its row; the row comes from its record\n",
+                 index, runs.size(), run.scene, run.solver, run.level, on);
     } else {
       fmt::print(stderr, "bench [{}/{}] {} {} L{}{}: continued from its checkpoint after load step {}\n", index,
                  runs.size(), run.scene, run.solver, run.level, on, continued->last_step);
@@ -393,8 +405,12 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
     // The time limit holds for the whole run, its earlier segments included.
     ChildLimits run_limits = limits;
     if (continued) run_limits.seconds = std::max(limits.seconds - continued->wall_seconds, 1.0);
-    const ChildResult child = run_child(argv, run_dir + "/stdout.txt", run_dir + "/stderr.txt", run_limits, on_tick,
-                                        launcher_for(run.processes));
+    ChildResult child;
+    if (continued && continued->ended)
+      child.exit_code = continued->converged ? 0 : 3;  // as the run's own exit: converged, or Newton failed
+    else
+      child = run_child(argv, run_dir + "/stdout.txt", run_dir + "/stderr.txt", run_limits, on_tick,
+                        launcher_for(run.processes));
     const double wall = write_rows(out, run, child, run_dir, options_for(o, run.solver), continued);
     const std::string status = solve_status(child, fs::exists(run_dir + "/metrics.toml"));
     if (status == "ok") finished_runs.add(run, wall);

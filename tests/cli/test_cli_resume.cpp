@@ -53,8 +53,9 @@ class ResumedRun : public ::testing::Test {
   }
 
   // Starts `stiction args...` (stdout and stderr to files in dir_) without the MPI variables
-  // of this process, and SIGKILLs it as soon as its record (metrics.toml in record_dir) has
-  // a completed load step. Returns whether it was killed before it ended by itself.
+  // of this process, and SIGKILLs it as soon as its record (`record`) and the checkpoint
+  // beside it hold a completed load step. Returns whether it was killed before it ended by
+  // itself.
   bool run_and_kill_after_first_step(const std::vector<std::string>& args, const fs::path& record) const {
     std::vector<std::string> env;
     for (char** e = environ; *e != nullptr; ++e) {
@@ -82,7 +83,9 @@ class ResumedRun : public ::testing::Test {
     while (std::chrono::steady_clock::now() - start < std::chrono::seconds(120)) {
       int status = 0;
       if (waitpid(pid, &status, WNOHANG) == pid) return false;  // ended by itself
-      if (read_file(record).find("INCOMPLETE") != std::string::npos) {
+      // The record is written before the checkpoint: wait for both.
+      if (read_file(record).find("INCOMPLETE") != std::string::npos &&
+          fs::exists(record.parent_path() / "checkpoint.bin")) {
         kill(pid, SIGKILL);
         killed = true;
         break;
@@ -204,6 +207,32 @@ TEST_F(ResumedRun, BenchResumeContinuesAnInterruptedRunFromItsCheckpoint) {
   const auto solves_a = stiction::harness::read_csv((dir_ / "interrupted" / "steps.csv").string()).rows;
   const auto solves_b = stiction::harness::read_csv((dir_ / "straight" / "steps.csv").string()).rows;
   EXPECT_EQ(solves_a.size(), solves_b.size());
+}
+
+// A sweep stopped after its run had ended but before it wrote the row: `bench --resume`
+// writes the row from the run's own record and runs nothing again.
+TEST_F(ResumedRun, BenchResumeWritesTheRowOfARunThatHadEnded) {
+  const fs::path run_dir = dir_ / "stopped" / "runs" / "cantilever-40-L0-lu-mumps";
+  fs::create_directories(run_dir);
+  const CliRun run = CliRun::of({"solve", scene_.string(), "--level", "0", "--solver", "lu-mumps", "--out",
+                                 run_dir.string(), "--quiet", "--no-vtu", "--metrics", (run_dir / "metrics.toml").string()},
+                                dir_);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string steps_before = read_file(run_dir / "steps.csv");
+  const CliRun resumed = CliRun::of({"bench", "--scenes", scene_.string(), "--solvers", "lu-mumps", "--levels", "0",
+                                     "--out", (dir_ / "stopped").string(), "--resume"},
+                                    dir_);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_NE(resumed.err.find("had ended without its row"), std::string::npos) << resumed.err;
+  EXPECT_EQ(read_file(run_dir / "steps.csv"), steps_before) << "the run was run again";
+  const auto rows = stiction::harness::read_csv((dir_ / "stopped" / "runs.csv").string()).rows;
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].at("status"), "ok");
+  EXPECT_EQ(rows[0].at("load_steps_completed"), "40");
+  EXPECT_EQ(rows[0].at("newton_iterations"), "160");
+  const toml::table record = run_table(run_dir / "metrics.toml");
+  EXPECT_NEAR(std::stod(rows[0].at("wall_seconds")), record["wall_seconds"].value<double>().value_or(-1), 1e-3);
+  EXPECT_NE(rows[0].at("detail").find("row from the run's record"), std::string::npos) << rows[0].at("detail");
 }
 
 }  // namespace
