@@ -9,12 +9,12 @@ set output 'block-strips-mr-time-per-solve.svg'
 set ylabel 's / linear solve (set-up + Krylov)'
 set title 'block-strips-mr: time per linear solve'
 plot data index 0 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.27)', \
-     data index 1 using 1:2 with linespoints pt 7 lw 2 title 'schur-amg (p = 1.17)'
+     data index 1 using 1:2 with linespoints pt 7 lw 2 title 'schur-amg (p = 1.19)'
 set output 'block-strips-mr-peak-memory.svg'
 set ylabel 'peak resident memory (MB)'
 set title 'block-strips-mr: peak memory'
 plot data index 0 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.26)', \
-     data index 1 using 1:3 with linespoints pt 7 lw 2 title 'schur-amg (p = 0.80)'
+     data index 1 using 1:3 with linespoints pt 7 lw 2 title 'schur-amg (p = 0.82)'
 unset logscale
 set xlabel 'mesh level'
 set xtics 1
