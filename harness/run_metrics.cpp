@@ -153,6 +153,7 @@ void write_metrics(const std::string& path, const scene::Scene& scene, const Run
   }
   if (std::rename(tmp.c_str(), path.c_str()) != 0) throw Error(fmt::format("cannot write metrics file '{}'", path));
 }
+
 RunRecorder::RunRecorder(std::string path, const scene::Scene& scene, RunSummary base, MPI_Comm comm,
                          std::optional<EarlierSegments> earlier, std::chrono::steady_clock::time_point start)
     : path_(std::move(path)),

@@ -151,9 +151,9 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   if (!o.metrics_path.empty()) {
     // The options the backend ran with: its defaults, then PETSC_OPTIONS, then the command line's.
     const char* environment = std::getenv("PETSC_OPTIONS");
-    RunSummary base{o.solver, solvers::default_options(o.solver) +
-                                  (environment && *environment ? fmt::format("# PETSC_OPTIONS\n{}\n", environment) : std::string()) +
-                                  o.petsc_options};
+    const std::string from_environment =
+        environment && *environment ? fmt::format("# PETSC_OPTIONS\n{}\n", environment) : std::string();
+    RunSummary base{o.solver, solvers::default_options(o.solver) + from_environment + o.petsc_options};
     base.processes = processes;
     record = std::make_unique<RunRecorder>(
         o.metrics_path, *scene, base, PETSC_COMM_WORLD,

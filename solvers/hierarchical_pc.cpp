@@ -2,9 +2,8 @@
 
 #include <fmt/format.h>
 
-#include "common/error.hpp"
-
 #include "block_view.hpp"
+#include "common/error.hpp"
 #include "solver_figures.hpp"
 
 #include <vector>

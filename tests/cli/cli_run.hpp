@@ -35,15 +35,19 @@ inline std::string shell_quote(const std::string& s) {
   return q + "'";
 }
 
-// `env -u NAME ...` for the MPI variables of this (PETSc-initialised) test process, so the
-// child starts as its own MPI singleton instead of joining this process's PMIx job.
+// An environment variable (NAME=value) of this (PETSc-initialised) test process's MPI job: a
+// child must not inherit it, so that it starts as its own MPI singleton instead of joining
+// this process's PMIx job.
+inline bool is_mpi_variable(const std::string& var) {
+  return var.rfind("OMPI_", 0) == 0 || var.rfind("PMIX_", 0) == 0 || var.rfind("OPAL_", 0) == 0;
+}
+
+// `env -u NAME ...` for the MPI variables of this process.
 inline std::string without_mpi_environment() {
   std::string prefix = "env";
   for (char** e = environ; *e != nullptr; ++e) {
     const std::string var = *e;
-    const std::string name = var.substr(0, var.find('='));
-    if (name.rfind("OMPI_", 0) == 0 || name.rfind("PMIX_", 0) == 0 || name.rfind("OPAL_", 0) == 0)
-      prefix += " -u " + name;
+    if (is_mpi_variable(var)) prefix += " -u " + var.substr(0, var.find('='));
   }
   return prefix;
 }

@@ -60,7 +60,7 @@ class ResumedRun : public ::testing::Test {
     std::vector<std::string> env;
     for (char** e = environ; *e != nullptr; ++e) {
       const std::string var = *e;
-      if (var.rfind("OMPI_", 0) != 0 && var.rfind("PMIX_", 0) != 0 && var.rfind("OPAL_", 0) != 0) env.push_back(var);
+      if (!stiction::test::is_mpi_variable(var)) env.push_back(var);
     }
     std::vector<std::string> argv{STICTION_BINARY};
     argv.insert(argv.end(), args.begin(), args.end());
