@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdlib>
 
 #include "common/process_memory.hpp"
@@ -10,7 +11,11 @@
 namespace stiction::solvers {
 
 void MumpsLuSolver::collect_setup_figures(std::map<std::string, double>& extra) const {
-  add_mumps_figures(ksp(), "", extra);
+  // A refused factorisation never set up the KSP's factor: its figures are the guard's analysis.
+  if (setup_succeeded())
+    add_mumps_figures(ksp(), "", extra);
+  else
+    extra.insert(analysis_figures_.begin(), analysis_figures_.end());
   if (estimate_mb_ > 0) extra["mumps_estimate_MB"] = estimate_mb_;
 }
 
@@ -35,7 +40,9 @@ std::string MumpsLuSolver::refuse_setup(const nonlinear::NewtonSystem& system) {
   const int infog = low_rank > 0 ? 37 : 17;
   STICTION_PETSC(MatMumpsGetInfog(F, infog, &estimate));
   estimate_mb_ = static_cast<double>(estimate);
-  const double in_use = resident_mb(), available = limit_mb - in_use;
+  analysis_figures_.clear();
+  add_mumps_analysis_figures(F, "", analysis_figures_);
+  const double in_use = resident_mb(), available = std::max(0.0, limit_mb - in_use);
   if (estimate_mb_ <= available) return {};
   return fmt::format("MUMPS estimates {:.0f} MB for its factorisation after analysis (INFOG({})) and the run may "
                      "still use {:.0f} MB (limit {:.0f} MB with {:.0f} MB in use) so it does not factorise",

@@ -29,6 +29,7 @@ protected:
 private:
   bool memory_checked_ = false;
   double estimate_mb_ = 0;  // mumps_estimate_MB, once the guard has analysed a system
+  std::map<std::string, double> analysis_figures_;  // the guard's analysis: ordering, estimated entries
 };
 
 }  // namespace stiction::solvers

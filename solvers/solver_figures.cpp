@@ -13,6 +13,17 @@
 
 namespace stiction::solvers {
 
+namespace {
+// MUMPS gives a count above 2^31 as minus the count in millions.
+double mumps_count(PetscInt v) { return v < 0 ? -1e6 * static_cast<double>(v) : static_cast<double>(v); }
+}  // namespace
+
+void add_mumps_analysis_figures(Mat F, const std::string& key_prefix, std::map<std::string, double>& extra) {
+  PetscInt ordering = 0, full_rank = 0;
+  if (!MatMumpsGetInfog(F, 7, &ordering)) extra[key_prefix + "mumps_ordering"] = static_cast<double>(ordering);
+  if (!MatMumpsGetInfog(F, 20, &full_rank)) extra[key_prefix + "mumps_factor_entries_full_rank"] = mumps_count(full_rank);
+}
+
 void add_mumps_figures(KSP ksp, const std::string& key_prefix, std::map<std::string, double>& extra) {
   PC pc;
   Mat F;
@@ -22,17 +33,14 @@ void add_mumps_figures(KSP ksp, const std::string& key_prefix, std::map<std::str
   if (!is_factor || PCFactorGetMatrix(pc, &F)) return;
   MatSolverType type;
   if (MatFactorGetSolverType(F, &type) || std::string(type) != MATSOLVERMUMPS) return;
-  PetscInt mem = 0, ordering = 0;
+  add_mumps_analysis_figures(F, key_prefix, extra);
+  PetscInt mem = 0;
   PetscReal flops = 0;
   if (!MatMumpsGetInfog(F, 22, &mem)) extra[key_prefix + "mumps_memory_MB"] = static_cast<double>(mem);
-  if (!MatMumpsGetInfog(F, 7, &ordering)) extra[key_prefix + "mumps_ordering"] = static_cast<double>(ordering);
   if (!MatMumpsGetRinfog(F, 3, &flops)) extra[key_prefix + "mumps_factor_flops"] = flops;
-  // MUMPS gives a count above 2^31 as minus the count in millions.
-  auto entries = [](PetscInt v) { return v < 0 ? -1e6 * static_cast<double>(v) : static_cast<double>(v); };
-  PetscInt stored = 0, compressed = 0, full_rank = 0;
+  PetscInt stored = 0, compressed = 0;
   if (!MatMumpsGetInfog(F, 29, &stored) && !MatMumpsGetInfog(F, 35, &compressed))
-    extra[key_prefix + "mumps_factor_entries"] = entries(compressed != 0 ? compressed : stored);
-  if (!MatMumpsGetInfog(F, 20, &full_rank)) extra[key_prefix + "mumps_factor_entries_full_rank"] = entries(full_rank);
+    extra[key_prefix + "mumps_factor_entries"] = mumps_count(compressed != 0 ? compressed : stored);
   // Numerical pivoting: a pivot below the threshold CNTL(1) of its column is chosen off the
   // diagonal within its front (INFOG(12)) or, where no fully summed row will do, delayed to
   // the parent front (INFOG(13)), which grows the fronts and the factors past the analysis.

@@ -16,6 +16,10 @@ namespace stiction::solvers {
 // parent front (INFOG(13)), MUMPS's stand-in for the pivot growth it does not report.
 // Keys get `key_prefix` ("" or "ll_"). Does nothing for other PCs.
 void add_mumps_figures(KSP ksp, const std::string& key_prefix, std::map<std::string, double>& extra);
+// What MUMPS knows about the factor matrix F after its analysis alone: the ordering it ran
+// (INFOG(7)) and the estimated full-rank entries of the factors (INFOG(20)), under the same
+// keys. Read from a factorisation that is never set up, they would be zeros (AMD's code).
+void add_mumps_analysis_figures(Mat F, const std::string& key_prefix, std::map<std::string, double>& extra);
 // Operator complexity (sum of the levels' nonzeros over the finest level's) of a KSP whose
 // PC is PCMG or PCGAMG; 0 for other PCs or before set-up.
 double mg_operator_complexity(KSP ksp);

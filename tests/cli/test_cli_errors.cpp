@@ -822,16 +822,24 @@ TEST_F(StictionCli, TradeoffRunsTheBackendsOnCoarserMeshes) {
 // use and refuse a factorisation that would not fit: a named failure with the estimate,
 // exit 3. lu-mumps-blr's estimate is the one with compressed factors, INFOG(37). 50 MB is
 // less than the process holds before the first factorisation; 100 GB lets it factorise.
+// The refused run's record still names the ordering MUMPS's analysis ran (PORD, code 4)
+// and the factor entries it estimated, from the guard's own analysis.
 TEST_F(StictionCli, MumpsBackendsRefuseAFactorisationBeyondTheMemoryLimit) {
   for (const auto& [backend, estimate] : {std::pair{"lu-mumps", "INFOG(17)"}, std::pair{"lu-mumps-blr", "INFOG(37)"}}) {
     SCOPED_TRACE(backend);
+    const fs::path metrics = dir_ / (std::string(backend) + "-refused.toml");
     setenv("STICTION_MEMORY_LIMIT_MB", "50", 1);
-    const CliRun refused = solve("cantilever-2d", {"--solver", backend});
+    const CliRun refused = solve("cantilever-2d", {"--solver", backend, "--metrics", metrics.string()});
     setenv("STICTION_MEMORY_LIMIT_MB", "100000", 1);
     const CliRun fits = solve("cantilever-2d", {"--solver", backend});
     unsetenv("STICTION_MEMORY_LIMIT_MB");
     expect_error(refused, 3, {"PC_SETUP_FAILED", "MUMPS estimates", estimate, "limit 50 MB"});
     EXPECT_EQ(fits.exit_code, 0) << fits.err;
+    const toml::table record = toml::parse_file(metrics.string());
+    const auto* first_solve = record["linear_solve"][0].as_table();
+    ASSERT_NE(first_solve, nullptr);
+    EXPECT_EQ((*first_solve)["mumps_ordering"].value_or(-1.0), 4.0) << "the ordering of the guard's analysis";
+    EXPECT_GT((*first_solve)["mumps_factor_entries_full_rank"].value_or(0.0), 0.0);
   }
 }
 
