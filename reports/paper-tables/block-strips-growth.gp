@@ -11,7 +11,7 @@ set title 'block-strips: time per linear solve'
 plot data index 0 using 1:2 with linespoints pt 7 lw 2 title 'fieldsplit-schur (p = 1.11)', \
      data index 1 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.13)', \
      data index 2 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.48)', \
-     data index 3 using 1:2 with linespoints pt 7 lw 2 title 'schur-amg (p = 1.20)', \
+     data index 3 using 1:2 with linespoints pt 7 lw 2 title 'schur-amg (p = 1.18)', \
      data index 4 using 1:2 with linespoints pt 7 lw 2 title 'schur-gamg (p = 1.11)'
 set output 'block-strips-peak-memory.svg'
 set ylabel 'peak resident memory (MB)'
@@ -19,7 +19,7 @@ set title 'block-strips: peak memory'
 plot data index 0 using 1:3 with linespoints pt 7 lw 2 title 'fieldsplit-schur (p = 0.78)', \
      data index 1 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.22)', \
      data index 2 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.19)', \
-     data index 3 using 1:3 with linespoints pt 7 lw 2 title 'schur-amg (p = 0.69)', \
+     data index 3 using 1:3 with linespoints pt 7 lw 2 title 'schur-amg (p = 0.77)', \
      data index 4 using 1:3 with linespoints pt 7 lw 2 title 'schur-gamg (p = 0.73)'
 unset logscale
 set xlabel 'mesh level'
