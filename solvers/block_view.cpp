@@ -103,28 +103,37 @@ void for_groups(const View& v, bool reverse, Args&&... args) {
   for (size_t q = 0; q < n; ++q) dispatch<F>(v.groups[reverse ? n - 1 - q : q], args...);
 }
 
+// z = y + B x (y null: z = B x), each row's sum accumulated from y_i in column order as
+// PETSc's MatMultAdd_SeqAIJ does (negating a sum is exact, so -(-y - a x) rounds the same).
 template <int G>
-struct Mult {
-  static void run(const Group& grp, const View& v, const Rows& r, const PetscScalar* xc, PetscScalar* y) {
-    PetscScalar sum[G] = {};
+struct MultAdd {
+  static void run(const Group& grp, const View& v, const Rows& r, const PetscScalar* xc, const PetscScalar* y,
+                  PetscScalar* z) {
+    PetscScalar sum[G];
+    for (int g = 0; g < G; ++g) sum[g] = y ? -y[grp.first + g] : 0.0;
     GroupRows<G>(v, r, grp).subtract(0, grp.length, xc, sum);
-    for (int g = 0; g < G; ++g) y[grp.first + g] = -sum[g];
+    for (int g = 0; g < G; ++g) z[grp.first + g] = -sum[g];
   }
 };
 
-PetscErrorCode mult(Mat B, Vec x, Vec y) {
+PetscErrorCode mult_add(Mat B, Vec x, Vec y, Vec z) {
   const View& v = view_of(B);
   Rows r;
   PetscCall(get_rows(v.parent, r));
-  const PetscScalar* xa;
-  PetscScalar* ya;
+  const PetscScalar *xa, *ya = nullptr;
+  PetscScalar* za;
   PetscCall(VecGetArrayRead(x, &xa));
-  PetscCall(VecGetArrayWrite(y, &ya));
-  for_groups<Mult>(v, false, v, r, xa - v.cols.first, ya);  // x indexed by parent column
-  PetscCall(VecRestoreArrayWrite(y, &ya));
+  if (y && y != z) PetscCall(VecGetArrayRead(y, &ya));
+  PetscCall(y == z ? VecGetArray(z, &za) : VecGetArrayWrite(z, &za));
+  if (y == z) ya = za;  // each row reads its own y_i before writing z_i
+  for_groups<MultAdd>(v, false, v, r, xa - v.cols.first, ya, za);  // x indexed by parent column
+  PetscCall(y == z ? VecRestoreArray(z, &za) : VecRestoreArrayWrite(z, &za));
+  if (y && y != z) PetscCall(VecRestoreArrayRead(y, &ya));
   PetscCall(VecRestoreArrayRead(x, &xa));
   return restore_rows(v.parent, r);
 }
+
+PetscErrorCode mult(Mat B, Vec x, Vec y) { return mult_add(B, x, nullptr, y); }
 
 PetscErrorCode get_diagonal(Mat B, Vec d) {
   const View& v = view_of(B);
@@ -317,6 +326,22 @@ IndexRange contiguous_range(IS is) {
 }
 
 Mat block_view(Mat parent, IndexRange rows, IndexRange cols) {
+  PetscBool mpi;
+  STICTION_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(parent), MATMPIAIJ, &mpi));
+  return mpi ? distributed_block_view(parent, rows, cols) : sequential_block_view(parent, rows, cols);
+}
+
+bool block_views_possible(Mat parent, std::initializer_list<IndexRange> ranges) {
+  PetscBool seq, mpi;
+  STICTION_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(parent), MATSEQAIJ, &seq));
+  STICTION_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(parent), MATMPIAIJ, &mpi));
+  int possible = seq || mpi;
+  for (const IndexRange& r : ranges) possible = possible && r.size >= 0;
+  MPI_Allreduce(MPI_IN_PLACE, &possible, 1, MPI_INT, MPI_LAND, PetscObjectComm(reinterpret_cast<PetscObject>(parent)));
+  return possible;
+}
+
+Mat sequential_block_view(Mat parent, IndexRange rows, IndexRange cols) {
   PetscBool seq;
   STICTION_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(parent), MATSEQAIJ, &seq));
   if (!seq || rows.size < 0 || cols.size < 0) throw Error("block view: needs a MATSEQAIJ parent and contiguous ranges", ErrorKind::Internal);
@@ -357,6 +382,7 @@ Mat block_view(Mat parent, IndexRange rows, IndexRange cols) {
   STICTION_PETSC(MatCreateShell(PetscObjectComm(reinterpret_cast<PetscObject>(parent)), rows.size, cols.size,
                                 rows.size, cols.size, v, &B));
   STICTION_PETSC(MatShellSetOperation(B, MATOP_MULT, reinterpret_cast<void (*)(void)>(mult)));
+  STICTION_PETSC(MatShellSetOperation(B, MATOP_MULT_ADD, reinterpret_cast<void (*)(void)>(mult_add)));
   STICTION_PETSC(MatShellSetOperation(B, MATOP_DESTROY, reinterpret_cast<void (*)(void)>(destroy)));
   if (v->square) {
     STICTION_PETSC(MatShellSetOperation(B, MATOP_GET_DIAGONAL, reinterpret_cast<void (*)(void)>(get_diagonal)));

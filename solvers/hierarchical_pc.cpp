@@ -87,10 +87,8 @@ void HierarchicalPreconditioner::setup(Mat A, IS linear, IS quadratic, MatNullSp
   PCType qq_type;
   STICTION_PETSC(KSPGetPC(ksp_qq_, &pc_qq));
   STICTION_PETSC(PCGetType(pc_qq, &qq_type));
-  PetscBool seq;
-  STICTION_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(A), MATSEQAIJ, &seq));
   const IndexRange l = contiguous_range(linear), q = contiguous_range(quadratic);
-  const bool views = seq && l.size >= 0 && q.size >= 0 && !block_copies_requested(prefix_);
+  const bool views = block_views_possible(A, {l, q}) && !block_copies_requested(prefix_);
   // Copies are reused while the pattern is unchanged (every Newton step without contact;
   // a contact system's pattern moves with the projections); views are made afresh, cheaply.
   const bool same_pattern = pattern_ == pattern_key(A);

@@ -30,11 +30,9 @@ void MixedPreconditioner::setup(Mat A, IS displacement, IS pressure, Mat pressur
     *is_u_.out() = displacement;
   }
   const bool first_setup = !S_;
-  // The couplings are only multiplied: views of A where A is sequential AIJ, else copies.
-  PetscBool seq;
-  STICTION_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(A), MATSEQAIJ, &seq));
+  // The couplings are only multiplied: views of A where its blocks allow, else copies.
   const IndexRange u = contiguous_range(displacement), p = contiguous_range(pressure);
-  if (seq && u.size >= 0 && p.size >= 0 && !block_copies_requested(prefix_)) {
+  if (block_views_possible(A, {u, p}) && !block_copies_requested(prefix_)) {
     *A_up_.out() = block_view(A, u, p);
     *A_pu_.out() = block_view(A, p, u);
   } else {
