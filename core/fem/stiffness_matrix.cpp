@@ -166,39 +166,49 @@ void StiffnessMatrix::lay_out_owned_rows(std::vector<PetscInt>& d_nnz, std::vect
   neighbours_ = std::move(neighbours);
 }
 
+// The matrix over split arrays written from the node graph: every owned row's columns
+// (zeros), ascending within each part. The slots are laid out at the first call.
 void StiffnessMatrix::create_distributed_matrix() {
   const DofLayout& L = *layout_;
-  const PetscInt n_owned = L.n_owned(), n_total = L.n_total();
-  std::vector<PetscInt> d_nnz, o_nnz;
-  lay_out_owned_rows(d_nnz, o_nnz);
-  STICTION_PETSC(MatCreate(comm_, A_.out()));
-  STICTION_PETSC(MatSetSizes(A_, n_owned, n_owned, n_total, n_total));
-  STICTION_PETSC(MatSetType(A_, MATMPIAIJ));
-  if (n_owned % block_size() == 0 && n_total % block_size() == 0) STICTION_PETSC(MatSetBlockSize(A_, block_size()));
-  STICTION_PETSC(MatMPIAIJSetPreallocation(A_, 0, d_nnz.data(), 0, o_nnz.data()));
-  // The pattern: every owned row's columns, with zeros.
+  const PetscInt first = L.first_owned(), n_owned = L.n_owned(), n_total = L.n_total();
+  if (!rows_laid_out_) lay_out_owned_rows(diagonal_length_, off_diagonal_length_);
+  rows_laid_out_ = true;
+  SplitCsrArrays pattern;
+  pattern.diagonal_start.assign(static_cast<size_t>(n_owned) + 1, 0);
+  pattern.off_diagonal_start.assign(static_cast<size_t>(n_owned) + 1, 0);
+  for (PetscInt r = 0; r < n_owned; ++r) {
+    pattern.diagonal_start[r + 1] = pattern.diagonal_start[r] + diagonal_length_[r];
+    pattern.off_diagonal_start[r + 1] = pattern.off_diagonal_start[r] + off_diagonal_length_[r];
+  }
+  pattern.diagonal_columns.resize(static_cast<size_t>(pattern.diagonal_start.back()));
+  pattern.off_diagonal_columns.resize(static_cast<size_t>(pattern.off_diagonal_start.back()));
+  pattern.diagonal_values.assign(pattern.diagonal_columns.size(), 0.0);
+  pattern.off_diagonal_values.assign(pattern.off_diagonal_columns.size(), 0.0);
   std::vector<PetscInt> sorted, rows(4);
   std::vector<int> place;
-  std::vector<PetscScalar> zeros;
   for (int a = 0; a < space_->n_nodes(); ++a) {
     if (degree(a) == 0) continue;  // not owned
     sorted_columns(a, sorted, place);
-    const int n = node_rows(a, rows.data());
-    zeros.assign(sorted.size() * n, 0.0);
-    STICTION_PETSC(MatSetValues(A_, n, rows.data(), static_cast<PetscInt>(sorted.size()), sorted.data(), zeros.data(),
-                                INSERT_VALUES));
+    for (int k = 0, n = node_rows(a, rows.data()); k < n; ++k) {
+      PetscInt* diagonal = pattern.diagonal_columns.data() + pattern.diagonal_start[rows[k] - first];
+      PetscInt* off = pattern.off_diagonal_columns.data() + pattern.off_diagonal_start[rows[k] - first];
+      for (const PetscInt c : sorted)
+        if (c >= first && c < first + n_owned)
+          *diagonal++ = c - first;
+        else
+          *off++ = c;
+    }
   }
-  STICTION_PETSC(MatAssemblyBegin(A_, MAT_FINAL_ASSEMBLY));
-  STICTION_PETSC(MatAssemblyEnd(A_, MAT_FINAL_ASSEMBLY));
+  *A_.out() = mpi_aij_over(comm_, n_owned, n_total, std::move(pattern));
+  if (n_owned % block_size() == 0 && n_total % block_size() == 0) STICTION_PETSC(MatSetBlockSize(A_, block_size()));
   STICTION_PETSC(MatSetOption(A_, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));
-  STICTION_PETSC(MatSetOption(A_, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
-  check_distributed_pattern(d_nnz, o_nnz);
+  check_distributed_pattern(diagonal_length_, off_diagonal_length_);
 }
 
 // The slots assume the layout of PETSc's MPIAIJ: per row, the diagonal part's columns
 // ascending, then the off-diagonal part's, ascending in global column (its compressed
-// column map is sorted). Checked once, so that a PETSc that stored them otherwise fails
-// loudly instead of assembling a wrong matrix.
+// column map is sorted). Checked for every matrix made (one pass over its columns), so that
+// a PETSc that stored them otherwise fails loudly instead of assembling a wrong matrix.
 void StiffnessMatrix::check_distributed_pattern(const std::vector<PetscInt>& d_nnz, const std::vector<PetscInt>& o_nnz) {
   const PetscInt* column_map;
   STICTION_PETSC(MatMPIAIJGetSeqAIJ(A_, &parts_[0], &parts_[1], &column_map));
@@ -245,6 +255,12 @@ CsrArrays StiffnessMatrix::take_arrays() {
   return out;
 }
 
+void StiffnessMatrix::release() {
+  A_.reset();
+  values_storage_.reset();
+  parts_[0] = parts_[1] = nullptr;
+}
+
 // Columns of every row of node a, in the documented layout.
 void StiffnessMatrix::row_columns(int a, std::vector<PetscInt>& cols) const {
   cols.clear();
@@ -256,7 +272,10 @@ void StiffnessMatrix::row_columns(int a, std::vector<PetscInt>& cols) const {
 
 void StiffnessMatrix::begin_assembly() {
   if (distributed()) {
-    STICTION_PETSC(MatZeroEntries(A_));  // also marks the MPIAIJ changed for its solvers
+    if (!A_)
+      create_distributed_matrix();
+    else
+      STICTION_PETSC(MatZeroEntries(A_));  // also marks the MPIAIJ changed for its solvers
     for (int k = 0; k < 2; ++k) {
       PetscInt n;
       const PetscInt* ja;

@@ -27,6 +27,8 @@
 // take_arrays() hands the assembled matrix over (a contact system merges its blocks into
 // its values, see build_augmented_matrix), so the tangent and the augmented matrix do not
 // both exist; the next begin_assembly() writes the pattern again and makes a fresh matrix.
+// On several ranks the augmented matrix is built from a copy of the tangent's rows, and
+// release() then drops the tangent for the same reason.
 #include <memory>
 #include <vector>
 
@@ -42,7 +44,7 @@ public:
   StiffnessMatrix(MPI_Comm comm, const FieldSpace& space);  // one rank
   StiffnessMatrix(const DofLayout& layout, const FieldSpace& space);
 
-  Mat mat() const { return A_; }  // null after take_arrays() until the next begin_assembly()
+  Mat mat() const { return A_; }  // null after take_arrays() or release() until the next begin_assembly()
   PetscInt block_size() const { return space_->has_pressure() ? 1 : dim_; }
 
   // Zero the values; element matrices are added between begin and end.
@@ -54,6 +56,10 @@ public:
   // The assembled matrix's arrays; this object drops the matrix and forgets the values.
   // One rank only: on several, the augmented matrix is built from mat().
   CsrArrays take_arrays();
+  // Drops the assembled matrix (several ranks: once the augmented matrix holds its rows, so
+  // that the two do not both exist while the system is solved); the next begin_assembly()
+  // makes a fresh one over the same pattern.
+  void release();
   bool distributed() const { return layout_ && !layout_->identity(); }
 
 private:
@@ -88,6 +94,8 @@ private:
   // second for its pressure column (vertex neighbours of mixed nodes). Between begin and
   // end of an assembly, each part's row starts and values.
   std::vector<int> column_slot_, pressure_slot_;
+  std::vector<PetscInt> diagonal_length_, off_diagonal_length_;  // per owned row, in each part
+  bool rows_laid_out_ = false;
   PetscInt part_entries_[2] = {0, 0};
   Mat parts_[2] = {nullptr, nullptr};
   const PetscInt* part_row_start_[2] = {nullptr, nullptr};

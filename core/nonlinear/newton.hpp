@@ -181,6 +181,7 @@ public:
   fem::InternalForceStatus residual(double t, const std::vector<double>& u, std::vector<double>& r) const;
   // The last assembled Newton system (for record/replay and tests), in layout()'s numbering.
   const NewtonSystem& system() const { return builder_.system(); }
+  Mat tangent_beside_system() const { return builder_.tangent_beside_system(); }
   const fem::DofLayout& layout() const { return layout_; }
   const fem::MeshPartition& partition() const { return partition_; }
   // Called after every linear solve with the system, the increment found and its figures

@@ -132,10 +132,11 @@ void NewtonSystemBuilder::border_with_constraints(double t, const std::vector<do
   SparseEntries blocks;
   std::vector<double> scratch_u(n_u), scratch_c;
   constraints.evaluate(t, u, lambda, scratch_u, scratch_c, &blocks, n_u);
-  if (stiffness_->distributed())
+  if (stiffness_->distributed()) {
     *system_.matrix.out() =
         build_distributed_augmented_matrix(stiffness_->mat(), layout_, n_u, blocks, stiffness_->block_size());
-  else
+    stiffness_->release();  // its rows are in the augmented matrix now
+  } else
     *system_.matrix.out() = build_augmented_matrix(system_.comm, stiffness_->take_arrays(), m, blocks,
                                                    stiffness_->block_size());
   STICTION_PETSC(MatSetNearNullSpace(system_.matrix, system_.near_null_space));

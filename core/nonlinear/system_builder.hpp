@@ -36,6 +36,11 @@ public:
                 const DirichletLifting& lifting, bool lift);
 
   const NewtonSystem& system() const { return system_; }
+  // A tangent matrix alive beside the system's (null when the system's matrix is the tangent
+  // or, with contact, once the augmented matrix holds its rows): memory the solve cannot use.
+  Mat tangent_beside_system() const {
+    return stiffness_->mat() == system_.matrix.get() ? nullptr : stiffness_->mat();
+  }
 
 private:
   void add_field(const char* name, std::pair<int, int> range, int block_size);

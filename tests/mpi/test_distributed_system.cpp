@@ -34,6 +34,7 @@ struct SystemProducts {
   // Per Newton iteration: each preconditioner part times x's entries on its block.
   std::vector<std::vector<std::vector<double>>> parts_times_x;
   std::vector<int> newton_per_step;
+  int tangents_beside_system = 0;  // systems solved while a tangent matrix was also alive
 };
 
 // x in app order: a fixed pseudo-random vector, the same on every process.
@@ -98,6 +99,7 @@ SystemProducts solve_recording(MPI_Comm comm, const std::string& name, const std
         parts.push_back(block_times(layout, part, space.n_dofs(), x));
     }
     out.parts_times_x.push_back(parts);
+    if (newton.tangent_beside_system()) ++out.tangents_beside_system;
   });
   const auto steps = newton.run({}, 1, scene->problem.step_reaching(scene->quick_until));
   for (const auto& s : steps) out.newton_per_step.push_back(static_cast<int>(s.iterations.size()));
@@ -134,6 +136,10 @@ TEST_P(DistributedSystem, EqualsTheOneProcessSystemAtEveryNewtonIteration) {
   const SystemProducts alone = solve_recording(PETSC_COMM_SELF, GetParam().scene, GetParam().backend);
   const SystemProducts together = solve_recording(PETSC_COMM_WORLD, GetParam().scene, GetParam().backend);
   EXPECT_EQ(alone.newton_per_step, together.newton_per_step);
+  // With contact the augmented matrix holds the tangent's rows, and the tangent is dropped
+  // before the solve (one process: merged in place; several: copied, then released).
+  EXPECT_EQ(alone.tangents_beside_system, 0);
+  EXPECT_EQ(together.tangents_beside_system, 0);
   ASSERT_EQ(alone.matrix_times_x.size(), together.matrix_times_x.size());
   ASSERT_FALSE(alone.matrix_times_x.empty());
   // Both runs follow one Newton path up to round-off (the sums run in another order), so
