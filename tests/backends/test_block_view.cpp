@@ -5,7 +5,6 @@
 
 #include <vector>
 
-#include "hierarchical_pc.hpp"
 #include "support/block_view_checks.hpp"
 #include "support/schur_helpers.hpp"
 
@@ -37,25 +36,13 @@ TEST(BlockView, HierarchicalPreconditionerHoldsViewsUnlessCopiesAreRequested) {
   test::StepSystem s("cantilever-2d");
   const auto& sys = s.system();
   for (const bool copies : {false, true}) {
-    const std::string prefix = copies ? "hp_copies_" : "hp_views_";
-    test::set_options(prefix, {{"ll_ksp_type", "preonly"}, {"ll_pc_type", "lu"}, {"qq_ksp_type", "preonly"},
-                               {"qq_pc_type", "sor"}, {"qq_pc_sor_symmetric", nullptr}});
-    if (copies) test::set_options(prefix, {{"block_copies", "true"}});
-    HierarchicalPreconditioner hp(PETSC_COMM_WORLD, prefix);
-    hp.setup(sys.matrix, sys.field("u_l")->is, sys.field("u_q")->is, sys.near_null_space,
-             sys.field("u_l")->block_size);
-    for (auto [row, col] : {std::pair{1, 1}, std::pair{1, 0}}) {
-      PetscBool shell;
-      PetscObjectTypeCompare(reinterpret_cast<PetscObject>(hp.block(row, col)), MATSHELL, &shell);
-      EXPECT_EQ(static_cast<bool>(shell), !copies) << "block " << row << col;
-    }
-    PetscBool shell;
-    PetscObjectTypeCompare(reinterpret_cast<PetscObject>(hp.block(0, 0)), MATSHELL, &shell);
-    EXPECT_FALSE(shell);  // A_ll: AMG and LU need its entries
-    double residual;
-    const int its = test::gmres_iterations(sys, hp, &residual);
-    EXPECT_LT(residual, 1e-10);
-    EXPECT_LT(its, 50);
+    const test::HierarchicalRun run =
+        test::run_hierarchical(sys, copies ? "hp_copies_" : "hp_views_", copies, "petsc", "symmetric");
+    EXPECT_EQ(run.qq_view, !copies);
+    EXPECT_EQ(run.ql_view, !copies);
+    EXPECT_FALSE(run.ll_view);  // A_ll: AMG and LU need its entries
+    EXPECT_LT(run.residual, 1e-10);
+    EXPECT_LT(run.iterations, 50);
   }
 }
 

@@ -9,9 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "hierarchical_pc.hpp"
 #include "support/block_view_checks.hpp"
-#include "support/schur_helpers.hpp"
+#include "support/schur_helpers.hpp"  // StepSystem
 
 namespace {
 
@@ -59,27 +58,16 @@ TEST(DistributedBlockView, HierarchicalPreconditionerHoldsViewsOnSeveralProcesse
   test::StepSystem s("cantilever-2d");
   const auto& sys = s.system();
   expect_distributed(sys);
-  int iterations[2];
+  test::HierarchicalRun runs[2];
   for (const bool copies : {false, true}) {
-    const std::string prefix = copies ? "mpi_hp_copies_" : "mpi_hp_views_";
-    test::set_options(prefix, {{"ll_ksp_type", "preonly"}, {"ll_pc_type", "lu"},
-                               {"ll_pc_factor_mat_solver_type", "mumps"}, {"qq_ksp_type", "preonly"},
-                               {"qq_pc_type", "sor"}, {"qq_pc_sor_local_symmetric", nullptr}});
-    if (copies) test::set_options(prefix, {{"block_copies", "true"}});
-    solvers::HierarchicalPreconditioner hp(PETSC_COMM_WORLD, prefix);
-    hp.setup(sys.matrix, sys.field("u_l")->is, sys.field("u_q")->is, sys.near_null_space,
-             sys.field("u_l")->block_size);
-    for (auto [row, col] : {std::pair{1, 1}, std::pair{1, 0}}) {
-      PetscBool shell;
-      PetscObjectTypeCompare(reinterpret_cast<PetscObject>(hp.block(row, col)), MATSHELL, &shell);
-      EXPECT_EQ(static_cast<bool>(shell), !copies) << "block " << row << col;
-    }
-    double residual;
-    iterations[copies] = test::gmres_iterations(sys, hp, &residual);
-    EXPECT_LT(residual, 1e-10);
+    runs[copies] =
+        test::run_hierarchical(sys, copies ? "mpi_hp_copies_" : "mpi_hp_views_", copies, "mumps", "local_symmetric");
+    EXPECT_EQ(runs[copies].qq_view, !copies);
+    EXPECT_EQ(runs[copies].ql_view, !copies);
+    EXPECT_LT(runs[copies].residual, 1e-10);
   }
-  EXPECT_LT(iterations[0], 60);
-  EXPECT_EQ(iterations[0], iterations[1]);
+  EXPECT_LT(runs[0].iterations, 60);
+  EXPECT_EQ(runs[0].iterations, runs[1].iterations);
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 #include <utility>
 
 #include "block_view.hpp"
+#include "hierarchical_pc.hpp"
+#include "support/schur_helpers.hpp"
 
 namespace stiction::test {
 
@@ -74,6 +76,22 @@ ViewAgreement compare_views_with_copies(const nonlinear::NewtonSystem& sys, cons
   agreement.diagonal = relative_difference(d_copy, d_view);
   PetscRandomDestroy(&rng);
   return agreement;
+}
+
+HierarchicalRun run_hierarchical(const nonlinear::NewtonSystem& sys, const std::string& prefix, bool copies,
+                                 const char* lu_package, const char* sweep) {
+  const std::string sweep_key = std::string("qq_pc_sor_") + sweep;
+  set_options(prefix, {{"ll_ksp_type", "preonly"}, {"ll_pc_type", "lu"}, {"ll_pc_factor_mat_solver_type", lu_package},
+                       {"qq_ksp_type", "preonly"}, {"qq_pc_type", "sor"}, {sweep_key.c_str(), nullptr}});
+  if (copies) set_options(prefix, {{"block_copies", "true"}});
+  solvers::HierarchicalPreconditioner hp(PetscObjectComm(reinterpret_cast<PetscObject>(sys.matrix.get())), prefix);
+  hp.setup(sys.matrix, sys.field("u_l")->is, sys.field("u_q")->is, sys.near_null_space, sys.field("u_l")->block_size);
+  HierarchicalRun run;
+  run.ll_view = is_shell(hp.block(0, 0));
+  run.ql_view = is_shell(hp.block(1, 0));
+  run.qq_view = is_shell(hp.block(1, 1));
+  run.iterations = gmres_iterations(sys, hp, &run.residual);
+  return run;
 }
 
 }  // namespace stiction::test

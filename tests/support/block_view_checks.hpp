@@ -25,4 +25,15 @@ struct ViewAgreement {
 
 ViewAgreement compare_views_with_copies(const nonlinear::NewtonSystem& sys, const std::vector<SorCase>& sweeps);
 
+// HP on sys under the options prefix, an LU of A_ll (factor package `lu_package`) and one
+// SOR sweep of kind `sweep` ("symmetric", or "local_symmetric" on several processes) on A_qq,
+// with copies of its blocks when asked: which blocks it held as views, and GMRES on sys.
+struct HierarchicalRun {
+  bool ll_view = false, ql_view = false, qq_view = false;
+  int iterations = 0;
+  double residual = 0;
+};
+HierarchicalRun run_hierarchical(const nonlinear::NewtonSystem& sys, const std::string& prefix, bool copies,
+                                 const char* lu_package, const char* sweep);
+
 }  // namespace stiction::test
