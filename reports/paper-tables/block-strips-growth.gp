@@ -12,7 +12,7 @@ plot data index 0 using 1:2 with linespoints pt 7 lw 2 title 'fieldsplit-schur (
      data index 1 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.13)', \
      data index 2 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.48)', \
      data index 3 using 1:2 with linespoints pt 7 lw 2 title 'schur-amg (p = 1.18)', \
-     data index 4 using 1:2 with linespoints pt 7 lw 2 title 'schur-gamg (p = 1.11)'
+     data index 4 using 1:2 with linespoints pt 7 lw 2 title 'schur-gamg (p = 1.19)'
 set output 'block-strips-peak-memory.svg'
 set ylabel 'peak resident memory (MB)'
 set title 'block-strips: peak memory'
@@ -20,7 +20,7 @@ plot data index 0 using 1:3 with linespoints pt 7 lw 2 title 'fieldsplit-schur (
      data index 1 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.22)', \
      data index 2 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.19)', \
      data index 3 using 1:3 with linespoints pt 7 lw 2 title 'schur-amg (p = 0.77)', \
-     data index 4 using 1:3 with linespoints pt 7 lw 2 title 'schur-gamg (p = 0.73)'
+     data index 4 using 1:3 with linespoints pt 7 lw 2 title 'schur-gamg (p = 0.76)'
 unset logscale
 set xlabel 'mesh level'
 set xtics 1
