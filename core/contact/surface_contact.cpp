@@ -8,9 +8,9 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
-#include <unordered_map>
 
 #include "common/error.hpp"
+#include "contact/merged_entries.hpp"
 #include "fem/quadrature.hpp"
 
 namespace stiction::contact {
@@ -408,26 +408,6 @@ void add_node_kinematics(const FacetEvaluator<D>& ev, const Facet& f, const Poin
       accumulate(node.dS, dof, lift<D>(Vec(-wphi * dw * (p.branch_motion[0] - p.branch_motion[1]))));
     }
 }
-
-// One slave facet's Jacobian entries, duplicates summed before they join the triplets: its
-// points repeat the same (row, column) pairs (the forces' variation: every master dof
-// against every unknown moving the master point, at each of the 36 points of a 3D facet).
-// Measured on hertz-spheres-3d level 2 (schur-amg): assembly 33.6 -> 29.7 s, peak memory
-// 3023 -> 2520 MB (level 1: 608 -> 447 MB).
-class MergedEntries {
-public:
-  void add(PetscInt r, PetscInt c, double v) {
-    sums_[(static_cast<std::uint64_t>(static_cast<std::uint32_t>(r)) << 32) | static_cast<std::uint32_t>(c)] += v;
-  }
-  void flush_into(nonlinear::SparseEntries& out) {
-    for (const auto& [key, v] : sums_)
-      out.add(static_cast<PetscInt>(key >> 32), static_cast<PetscInt>(key & 0xffffffffu), v);
-    sums_.clear();
-  }
-
-private:
-  std::unordered_map<std::uint64_t, double> sums_;
-};
 
 // The constraint forces of node i's multiplier lam at the point: the slave carries +lambda,
 // the master -lambda at the contact point (r_u -= B_int^T lambda - B_ext^T lambda), with the
