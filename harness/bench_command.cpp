@@ -7,7 +7,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -17,6 +16,7 @@
 #include <fmt/ranges.h>
 #include <unistd.h>
 
+#include "bench_estimate.hpp"
 #include "bench_report.hpp"
 #include "builtin_scenes.hpp"
 #include "checkpoint.hpp"
@@ -44,17 +44,6 @@ const char* kRunColumns =
 const char* kStepColumns =
     "scene,level,solver,processes,step,newton_iteration,converged,reason,krylov_iterations,initial_residual,final_residual,"
     "assembly_seconds,setup_seconds,solve_seconds";
-
-struct Run {
-  std::string scene, solver;
-  int level;
-  int processes = 1;
-  std::string key() const { return fmt::format("{}|{}|{}|{}", scene, level, solver, processes); }
-  std::string id() const {
-    return fmt::format("{}-L{}-{}{}", fs::path(scene).stem().string(), level, solver,
-                       processes > 1 ? fmt::format("-np{}", processes) : "");
-  }
-};
 
 // `mpirun -n N` for a run on N > 1 processes (as root Open MPI needs --allow-run-as-root;
 // more processes than cores need --oversubscribe, and their times are not a measurement).
@@ -102,7 +91,7 @@ struct Interrupted {
   int segments = 0;
 };
 
-std::optional<Interrupted> interrupted_run(const Run& run, const std::string& run_dir) {
+std::optional<Interrupted> interrupted_run(const BenchRun& run, const std::string& run_dir) {
   const std::string checkpoint = run_dir + "/checkpoint.bin", metrics_path = run_dir + "/metrics.toml";
   if (!fs::exists(checkpoint) || !fs::exists(metrics_path)) return std::nullopt;
   try {
@@ -128,7 +117,7 @@ std::optional<Interrupted> interrupted_run(const Run& run, const std::string& ru
 }
 
 // Appends the run's row to runs.csv and its linear solves to steps.csv; returns its wall time.
-double write_rows(const std::string& out, const Run& run, const ChildResult& child, const std::string& run_dir,
+double write_rows(const std::string& out, const BenchRun& run, const ChildResult& child, const std::string& run_dir,
                   const std::string& petsc_options, const std::optional<Interrupted>& continued) {
   const std::string metrics_path = run_dir + "/metrics.toml";
   toml::table metrics;
@@ -207,55 +196,6 @@ double write_rows(const std::string& out, const Run& run, const ChildResult& chi
   return wall;
 }
 
-// Estimated wall time of a run that has not finished, from the finished ones (seconds; 0:
-// no basis yet). The same scene, backend and process count one level down, times the
-// growth that backend showed between those two levels on another scene, or 15 (about
-// n^1.3 for 8x the unknowns) when none did; without a run one level down, the mean of the
-// finished runs at this level.
-// Wall time of every finished run, by Run::key().
-struct FinishedRuns {
-  std::map<std::string, std::pair<Run, double>> by_key;
-  void add(const Run& r, double seconds) { by_key[r.key()] = {r, seconds}; }
-  bool has(const Run& r) const { return by_key.count(r.key()) > 0; }
-};
-
-double estimate_seconds(const Run& run, const FinishedRuns& finished) {
-  auto seconds = [&](const std::string& scene, const std::string& solver, int level) {
-    const auto it = finished.by_key.find(Run{scene, solver, level, run.processes}.key());
-    return it == finished.by_key.end() ? 0.0 : it->second.second;
-  };
-  if (const double below = seconds(run.scene, run.solver, run.level - 1); below > 0) {
-    double growth = 15;
-    for (const auto& [key, done] : finished.by_key) {
-      const auto& [other, t] = done;
-      if (other.solver != run.solver || other.scene == run.scene || other.level != run.level ||
-          other.processes != run.processes)
-        continue;
-      if (const double t0 = seconds(other.scene, other.solver, run.level - 1); t0 > 0) growth = t / t0;
-    }
-    return below * growth;
-  }
-  double sum = 0;
-  int n = 0;
-  for (const auto& [key, done] : finished.by_key)
-    if (done.first.level == run.level) sum += done.second, ++n;
-  return n ? sum / n : 0;
-}
-
-std::string time_left(const std::vector<Run>& runs, size_t current, double elapsed, const FinishedRuns& finished) {
-  double left = 0;
-  int unknown = 0;
-  for (size_t k = current; k < runs.size(); ++k) {
-    if (finished.has(runs[k])) continue;
-    const double t = estimate_seconds(runs[k], finished);
-    if (t <= 0) ++unknown;
-    left += k == current ? std::max(t - elapsed, 0.0) : t;
-  }
-  std::string text = fmt::format("about {:.0f} min left", left / 60);
-  if (unknown) text += fmt::format(" + {} run{} not yet estimable", unknown, unknown > 1 ? "s" : "");
-  return text;
-}
-
 // Refuses, before any run, a sweep that would fail or silently ignore part of itself.
 void check_sweep(const BenchOptions& o, const std::vector<std::string>& scenes,
                  const std::vector<std::string>& solvers_list) {
@@ -316,7 +256,7 @@ std::string options_for(const BenchOptions& o, const std::string& solver) {
 // The child's command line: `stiction solve` of the run into run_dir (continued from its
 // checkpoint there when `continued`), with the sweep's settings and the PETSc options whose
 // prefix is the run's backend.
-std::vector<std::string> child_arguments(const BenchOptions& o, const Run& run, const std::string& exe,
+std::vector<std::string> child_arguments(const BenchOptions& o, const BenchRun& run, const std::string& exe,
                                          const std::string& run_dir, bool continued) {
   std::vector<std::string> argv{exe,        "solve",    run.scene,  "--level",   std::to_string(run.level),
                                 "--solver", run.solver, continued ? "--restart" : "--out", run_dir, "--quiet",
@@ -362,14 +302,14 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
   }
   if (!header.empty()) append_durably(out + "/steps.csv", header + kStepColumns);
 
-  std::vector<Run> runs;
+  std::vector<BenchRun> runs;
   for (int level : o.levels)
     for (const auto& scene : scenes)
       for (const auto& solver : solvers_list)
         for (int processes : o.ranks) runs.push_back({scene, solver, level, processes});
   const std::string exe = self_executable();
   int index = 0;
-  for (const Run& run : runs) {
+  for (const BenchRun& run : runs) {
     const size_t position = index;
     ++index;
     const std::string on = run.processes > 1 ? fmt::format(" np{}", run.processes) : "";

@@ -1,0 +1,61 @@
+#include "bench_estimate.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <filesystem>
+
+namespace stiction::harness {
+
+std::string BenchRun::key() const { return fmt::format("{}|{}|{}|{}", scene, level, solver, processes); }
+
+std::string BenchRun::id() const {
+  return fmt::format("{}-L{}-{}{}", std::filesystem::path(scene).stem().string(), level, solver,
+                     processes > 1 ? fmt::format("-np{}", processes) : "");
+}
+
+// The same scene, backend and process count one level down, times the growth that backend
+// showed between those two levels on another scene, or 15 (about n^1.3 for 8x the unknowns)
+// when none did; without a run one level down, the mean of the finished runs at this level.
+double estimate_seconds(const BenchRun& run, const FinishedRuns& finished) {
+  auto seconds = [&](const std::string& scene, const std::string& solver, int level) {
+    const auto it = finished.by_key.find(BenchRun{scene, solver, level, run.processes}.key());
+    return it == finished.by_key.end() ? 0.0 : it->second.second;
+  };
+  if (const double below = seconds(run.scene, run.solver, run.level - 1); below > 0) {
+    double growth = 15;
+    for (const auto& [key, done] : finished.by_key) {
+      const auto& [other, t] = done;
+      if (other.solver != run.solver || other.scene == run.scene || other.level != run.level ||
+          other.processes != run.processes)
+        continue;
+      if (const double t0 = seconds(other.scene, other.solver, run.level - 1); t0 > 0) growth = t / t0;
+    }
+    return below * growth;
+  }
+  double sum = 0;
+  int n = 0;
+  for (const auto& [key, done] : finished.by_key)
+    if (done.first.level == run.level) sum += done.second, ++n;
+  return n ? sum / n : 0;
+}
+
+std::string time_left(const std::vector<BenchRun>& runs, size_t current, double elapsed, const FinishedRuns& finished) {
+  double left = 0;
+  int remaining = 0, unknown = 0;
+  for (size_t k = current; k < runs.size(); ++k) {
+    if (finished.has(runs[k])) continue;
+    ++remaining;
+    const double t = estimate_seconds(runs[k], finished);
+    if (t <= 0) ++unknown;
+    left += k == current ? std::max(t - elapsed, 0.0) : t;
+  }
+  const auto runs_text = [](int n) { return fmt::format("{} run{}", n, n > 1 ? "s" : ""); };
+  // Before any run has finished nothing is known, and "0 min left" would mislead.
+  if (unknown == remaining) return fmt::format("time left not yet estimable ({} to go)", runs_text(remaining));
+  std::string text = fmt::format("about {:.0f} min left", left / 60);
+  if (unknown) text += fmt::format(" + {} not yet estimable", runs_text(unknown));
+  return text;
+}
+
+}  // namespace stiction::harness

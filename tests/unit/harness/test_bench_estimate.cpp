@@ -1,0 +1,45 @@
+// The time-left estimate of a sweep's progress line (bench_estimate.hpp), against sums
+// worked by hand from the finished runs' wall times.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "bench_estimate.hpp"
+
+namespace stiction::harness {
+namespace {
+
+TEST(BenchEstimate, NothingFinishedSaysSoInsteadOfZeroMinutes) {
+  const std::vector<BenchRun> runs{{"block-strips", "schur-amg", 0}, {"block-strips", "lu-mumps", 0}};
+  const FinishedRuns none;
+  EXPECT_EQ(estimate_seconds(runs[0], none), 0.0);
+  EXPECT_EQ(time_left(runs, 0, 30.0, none), "time left not yet estimable (2 runs to go)");
+  EXPECT_EQ(time_left(runs, 1, 0.0, none), "time left not yet estimable (1 run to go)");
+}
+
+TEST(BenchEstimate, OneLevelUpGrowsAsTheSameBackendGrewOnAnotherScene) {
+  FinishedRuns finished;
+  finished.add({"a", "schur-amg", 0}, 10.0);
+  finished.add({"a", "schur-amg", 1}, 50.0);  // 5x from level 0 to 1
+  finished.add({"b", "schur-amg", 0}, 20.0);
+  EXPECT_DOUBLE_EQ(estimate_seconds({"b", "schur-amg", 1}, finished), 100.0);
+  // No growth measured for lu-mumps: 15x its level-0 time.
+  finished.add({"b", "lu-mumps", 0}, 4.0);
+  EXPECT_DOUBLE_EQ(estimate_seconds({"b", "lu-mumps", 1}, finished), 60.0);
+  // Another process count is another run: nothing one level down on two processes.
+  EXPECT_EQ(estimate_seconds({"b", "schur-amg", 1, 2}, finished), 50.0);  // mean at level 1
+}
+
+TEST(BenchEstimate, TimeLeftSubtractsTheCurrentRunsElapsedTimeAndCountsTheUnknown) {
+  FinishedRuns finished;
+  finished.add({"a", "schur-amg", 0}, 60.0);
+  const std::vector<BenchRun> runs{{"a", "schur-amg", 0}, {"a", "schur-amg", 1}, {"a", "gamg", 2}};
+  // Run 1 (level 1): 15 x 60 s = 900 s, 300 s of it elapsed; run 2 has no basis.
+  EXPECT_EQ(time_left(runs, 1, 300.0, finished), "about 10 min left + 1 run not yet estimable");
+  finished.add({"a", "gamg", 1}, 120.0);
+  // Run 2 now: 15 x 120 s = 1800 s; the current run past its estimate counts 0.
+  EXPECT_EQ(time_left(runs, 1, 1000.0, finished), "about 30 min left");
+}
+
+}  // namespace
+}  // namespace stiction::harness
