@@ -10,3 +10,8 @@ run --scenes mooney-rivlin-block --solvers schur-amg --levels 1 --ranks 1,2 --ti
 run --scenes block-compression --solvers schur-amg --levels 2 --ranks 1,2 --time-limit 2400 --out reports/scaling/block-compression-L2
 run --scenes mooney-rivlin-block --solvers schur-amg,lu-mumps --levels 1 --ranks 1,2 --time-limit 1800 --resume --out reports/scaling/mooney-rivlin-block-L1
 echo "== $(date -u +%H:%M:%S) done" >> /work/l2/scaling.log
+# Level 2, 2026-12-04, binary of 797810e (the ironing run on the other core stopped with SIGSTOP):
+run --scenes mooney-rivlin-block --solvers schur-amg --levels 2 --ranks 1,2 --time-limit 2400 --out reports/scaling/mooney-rivlin-block-L2
+# block-strips level 2, its first load step only (t = 1: 2 Newton iterations), one and two processes:
+#   /usr/bin/time -v [mpirun -n 2] $B solve block-strips --level 2 --until 1 --solver schur-amg --no-vtu \
+#     --metrics m.toml --out <dir> -schur_amg_ksp_gmres_restart 50      -> block-strips-L2-first-step/np{1,2}/
