@@ -163,6 +163,7 @@ void KspSolver::setup(const nonlinear::NewtonSystem& system) {
   setup_failure_ = refuse_setup(system);
   if (setup_failure_.empty()) try {
       STICTION_PETSC(KSPSetUp(ksp_));
+      set_up_inner_solvers();
     } catch (const Error& e) {
       setup_failure_ = e.what();
     }

@@ -67,6 +67,9 @@ protected:
   // Before KSPSetUp: why this system must not be set up (it would not fit in memory, ...),
   // or empty. A reason is reported by solve() as a failed set-up.
   virtual std::string refuse_setup(const nonlinear::NewtonSystem& system) { return {}; }
+  // After a successful KSPSetUp: set up what PETSc would leave to the first solve (a field
+  // split's inner solvers), so that its time, memory and figures count as the set-up's.
+  virtual void set_up_inner_solvers() {}
   KSP ksp() const { return ksp_; }
   // Whether the last setup() built the preconditioner (collect_setup_figures runs either way).
   bool setup_succeeded() const { return setup_failure_.empty(); }
