@@ -11,6 +11,8 @@
 // with that reason (gamg is PETSc's answer there).
 #include <petscksp.h>
 
+#include <vector>
+
 #include "field_sets.hpp"
 #include "ksp_solver.hpp"
 #include "solver_figures.hpp"
@@ -67,29 +69,30 @@ protected:
   // factorisation) only at the first application: set them up here, so that the set-up
   // time and the AMG complexity are the set-up's and not the first solve's.
   void set_up_inner_solvers() override {
+    for (KSP sub : split_solvers()) STICTION_PETSC(KSPSetUp(sub));
+  }
+
+  void collect_setup_figures(std::map<std::string, double>& extra) const override {
+    // The split's solvers exist only after a successful set-up.
+    if (!setup_succeeded()) return;
+    const std::vector<KSP> subs = split_solvers();
+    const double c = subs.empty() ? 0.0 : mg_operator_complexity(subs[0]);
+    if (c > 0) extra["amg_operator_complexity"] = c;
+  }
+
+private:
+  // The splits' solvers: the displacement's, then the Schur complement's.
+  std::vector<KSP> split_solvers() const {
     PC pc;
     KSP* sub = nullptr;
     PetscInt n = 0;
     STICTION_PETSC(KSPGetPC(ksp(), &pc));
     STICTION_PETSC(PCFieldSplitGetSubKSP(pc, &n, &sub));
-    PetscErrorCode ierr = 0;
-    for (PetscInt k = 0; k < n && !ierr; ++k) ierr = KSPSetUp(sub[k]);
+    std::vector<KSP> out(sub, sub + n);
     PetscFree(sub);
-    STICTION_PETSC(ierr);
+    return out;
   }
 
-  void collect_setup_figures(std::map<std::string, double>& extra) const override {
-    PC pc;
-    KSP* sub = nullptr;
-    PetscInt n = 0;
-    // The split's solvers exist only after a successful set-up.
-    if (!setup_succeeded() || KSPGetPC(ksp(), &pc) || PCFieldSplitGetSubKSP(pc, &n, &sub) || n < 1) return;
-    const double c = mg_operator_complexity(sub[0]);
-    PetscFree(sub);
-    if (c > 0) extra["amg_operator_complexity"] = c;
-  }
-
-private:
   // The displacement unknowns (u_l and u_q): their count.
   static PetscInt displacement_size(const nonlinear::NewtonSystem& system) {
     PetscInt size = 0, k = 0;
