@@ -171,7 +171,11 @@ double write_rows(const std::string& out, const BenchRun& run, const ChildResult
     peak_total = std::max(peak_total, continued->peak_rss_mb);
     if (!several) peak_per_process = peak_total;
   }
-  if (child.hit_time_limit) detail = fmt::format("stopped after {:.0f} s", wall);
+  if (child.hit_time_limit)
+    detail = solves > 0 ? fmt::format("stopped after {:.0f} s; figures per solve over the {:.0f} linear solves it "
+                                      "finished ({:.0f} of {:.0f} load steps completed)",
+                                      wall, solves, num("load_steps_completed"), num("load_steps"))
+                        : fmt::format("stopped after {:.0f} s", wall);
   if (continued && continued->ended)
     detail += fmt::format("{}row from the run's record: the run had ended, the sweep had not written its row",
                           detail.empty() ? "" : "; ");

@@ -12,8 +12,10 @@
 namespace stiction::harness {
 namespace {
 
-// One [[step]] row per increment and one [[linear_solve]] row per Newton iteration.
-void append_rows(const std::vector<nonlinear::StepResult>& steps, toml::array& step_rows, toml::array& solve_rows) {
+// One [[step]] row per increment and one [[linear_solve]] row per Newton iteration; `reason`
+// replaces the increments' own (IN_PROGRESS for one that has not ended).
+void append_rows(const std::vector<nonlinear::StepResult>& steps, toml::array& step_rows, toml::array& solve_rows,
+                 const char* reason = nullptr) {
   for (const auto& s : steps) {
     step_rows.push_back(toml::table{{"step", s.step},
                                     {"time", s.time},
@@ -21,7 +23,7 @@ void append_rows(const std::vector<nonlinear::StepResult>& steps, toml::array& s
                                     {"retried", s.retried},
                                     {"completes_step", s.completes_step},
                                     {"converged", s.converged()},
-                                    {"reason", nonlinear::to_string(s.reason)},
+                                    {"reason", reason ? std::string(reason) : nonlinear::to_string(s.reason)},
                                     {"newton_iterations", static_cast<int64_t>(s.iterations.size())},
                                     {"initial_residual", s.initial_residual},
                                     {"reference_residual", s.reference_residual},
@@ -83,11 +85,13 @@ std::optional<EarlierSegments> read_earlier_segments(const std::string& path, co
 }
 
 void write_metrics(const std::string& path, const scene::Scene& scene, const RunSummary& summary,
-                   const std::vector<nonlinear::StepResult>& steps, const EarlierSegments* earlier) {
+                   const std::vector<nonlinear::StepResult>& steps, const EarlierSegments* earlier,
+                   const nonlinear::StepResult* in_progress) {
   const auto& space = *scene.space;
   toml::array step_rows, solve_rows;
   if (earlier) step_rows = earlier->steps, solve_rows = earlier->linear_solves;
   append_rows(steps, step_rows, solve_rows);
+  if (in_progress && !in_progress->iterations.empty()) append_rows({*in_progress}, step_rows, solve_rows, "IN_PROGRESS");
   // The run's totals, summed over the rows of every segment.
   long newton = 0, krylov = 0;
   double assembly = 0, setup = 0, solve = 0;
@@ -155,18 +159,34 @@ void write_metrics(const std::string& path, const scene::Scene& scene, const Run
 }
 
 RunRecorder::RunRecorder(std::string path, const scene::Scene& scene, RunSummary base, MPI_Comm comm,
-                         std::optional<EarlierSegments> earlier, std::chrono::steady_clock::time_point start)
+                         std::optional<EarlierSegments> earlier, std::chrono::steady_clock::time_point start,
+                         std::chrono::duration<double> in_progress_interval)
     : path_(std::move(path)),
       scene_(scene),
       base_(std::move(base)),
       comm_(comm),
       earlier_(std::move(earlier)),
-      start_(start) {}
+      start_(start),
+      in_progress_interval_(in_progress_interval),
+      last_write_(std::chrono::steady_clock::now()) {}
 
 void RunRecorder::add(const nonlinear::StepResult& attempt) {
   attempts_.push_back(attempt);
+  in_progress_ = {};  // the attempt carries its iterations
   if (attempt.completes_step)
     write(false, "INCOMPLETE", fmt::format("recorded after load step {}; the run had not ended", attempt.step));
+}
+
+void RunRecorder::add_iteration(int step, double t, const nonlinear::NewtonIteration& iteration) {
+  if (in_progress_.iterations.empty()) in_progress_.step = step, in_progress_.time = t;
+  in_progress_.iterations.push_back(iteration);
+  // Rank 0's clock decides for every process: the write is collective.
+  int due = std::chrono::steady_clock::now() - last_write_ >= in_progress_interval_ ? 1 : 0;
+  MPI_Bcast(&due, 1, MPI_INT, 0, comm_);
+  if (due)
+    write(false, "INCOMPLETE",
+          fmt::format("recorded in load step {} after Newton iteration {}; the run had not ended", step,
+                      in_progress_.iterations.size()));
 }
 
 void RunRecorder::finish() {
@@ -186,7 +206,8 @@ void RunRecorder::write(bool converged, const std::string& reason, const std::st
   MPI_Reduce(&peak, &summary.peak_rss_mb_sum, 1, MPI_DOUBLE, MPI_SUM, 0, comm_);
   int rank = 0;
   MPI_Comm_rank(comm_, &rank);
-  if (rank == 0) write_metrics(path_, scene_, summary, attempts_, earlier_ ? &*earlier_ : nullptr);
+  if (rank == 0) write_metrics(path_, scene_, summary, attempts_, earlier_ ? &*earlier_ : nullptr, &in_progress_);
+  last_write_ = std::chrono::steady_clock::now();
 }
 
 double seconds_per_converged_solve(const toml::array* linear_solves) {

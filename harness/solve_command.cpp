@@ -160,6 +160,8 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
         restart ? read_earlier_segments(o.metrics_path, scene->name, scene->level, o.solver, resume.state.step)
                 : std::nullopt,
         t_start);
+    newton.set_iteration_observer(
+        [&](int step, double t, const nonlinear::NewtonIteration& it) { record->add_iteration(step, t, it); });
   }
   auto results = newton.run([&](const nonlinear::StepResult& r) {
     if (table) table->add(r, *scene);

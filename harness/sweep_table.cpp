@@ -74,4 +74,9 @@ std::string run_status_text(const std::map<std::string, std::string>& row) {
   return detail.empty() ? status : status + ": " + detail;
 }
 
+bool stopped_with_solves(const std::map<std::string, std::string>& row) {
+  return row.at("status") == "time-limit" && number(row, "linear_solves") > 0 &&
+         number(row, "seconds_per_linear_solve") > 0;
+}
+
 }  // namespace stiction::harness

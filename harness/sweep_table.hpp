@@ -24,4 +24,9 @@ CsvTable open_sweep_table(const std::string& path, const std::string& columns, b
 // otherwise the status and what stopped the run.
 std::string run_status_text(const std::map<std::string, std::string>& row);
 
+// A run its time limit stopped after it had finished some linear solves: its per-solve
+// figures (seconds and Krylov iterations per solve, over those solves) are measured, its
+// totals are not, and its peak memory is a lower bound of the whole run's.
+bool stopped_with_solves(const std::map<std::string, std::string>& row);
+
 }  // namespace stiction::harness

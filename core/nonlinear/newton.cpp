@@ -297,6 +297,10 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
     res.wall_seconds = seconds_since(t_step);
     return res;
   };
+  auto keep_iteration = [&](const NewtonIteration& rec) {
+    res.iterations.push_back(rec);
+    if (iteration_observer_) iteration_observer_(step, t, rec);
+  };
   ActiveSetMonitor monitor(settings_.active_set);
   int last_changes = 0;
   bool states_checked = true;  // the states were tested at the current iterate
@@ -371,7 +375,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
       linear_.continue_longer(builder_.system(), du, rec.linear);
     if (observer_) observer_(builder_.system(), du, rec.linear, step, it + 1);
     if (!rec.linear.converged && !usable_direction(rec.linear, terminal)) {
-      res.iterations.push_back(rec);
+      keep_iteration(rec);
       res.detail = fmt::format("linear solver {} stopped with {}", linear_.name(), rec.linear.reason);
       if (const auto k = rec.linear.extra.find("krylov_continued_restart"); k != rec.linear.extra.end())
         res.detail += fmt::format(" (also when continued with a restart of {:g})", k->second);
@@ -382,7 +386,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
     const TrialStep trial = take_step(t, dv, dl, rt);
     asm_seconds = trial.assembly_seconds;
     if (trial.failed) {
-      res.iterations.push_back(rec);
+      keep_iteration(rec);
       res.detail = trial.failure == NewtonReason::DivergedNaN
                        ? "the residual is not finite after every step reduction"
                        : fmt::format("{} inverts (det F <= 0) even after {} step halvings",
@@ -408,7 +412,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
     rec.constraint_residual = cnorm;
     rec.state_changes = last_changes;
     rec.step_length = alpha;
-    res.iterations.push_back(rec);
+    keep_iteration(rec);
     if (rnorm > settings_.divergence_factor * std::max(res.reference_residual, settings_.atol)) {
       res.detail = fmt::format("residual {:.3e} grew beyond {:g} x the reference {:.3e}", rnorm,
                                settings_.divergence_factor, res.reference_residual);

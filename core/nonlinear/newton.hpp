@@ -200,6 +200,11 @@ public:
   };
   using StateChangeObserver = std::function<void(const StateChange&)>;
   void set_state_change_observer(StateChangeObserver observer) { state_observer_ = std::move(observer); }
+  // Called after every Newton iteration with the increment's load step, its target
+  // pseudo-time and the iteration's record, before the increment ends (a run's record can
+  // then keep the solves of an increment that a time limit cuts short).
+  using IterationObserver = std::function<void(int step, double t, const NewtonIteration&)>;
+  void set_iteration_observer(IterationObserver observer) { iteration_observer_ = std::move(observer); }
 
 private:
   struct Residuals;
@@ -259,6 +264,7 @@ private:
   int completed_step_ = 0;      // the last load step completed
   SystemObserver observer_;
   StateChangeObserver state_observer_;
+  IterationObserver iteration_observer_;
 };
 
 }  // namespace stiction::nonlinear

@@ -76,6 +76,31 @@ TEST(PaperTables, RatiosMeshCountsAndForcesBesideThePapers) {
   fs::remove_all(dir);
 }
 
+// A run its time limit stopped after some linear solves shows its figures per solve (and the
+// ratio per solve against lu-mumps), its peak memory as a lower bound and no totals; one
+// stopped before any solve shows none.
+TEST(PaperTables, TimeLimitedRunShowsItsFiguresPerSolve) {
+  const fs::path dir = fs::temp_directory_path() / "stiction-paper-tables-partial-test";
+  fs::remove_all(dir);
+  const std::string header =
+      "scene,level,solver,status,unknowns,multipliers,newton_iterations,linear_solves,krylov_per_linear_solve,"
+      "wall_seconds,seconds_per_linear_solve,peak_rss_mb,detail\n";
+  write(dir / "runs.csv", header +
+                              "block-strips,2,lu-mumps,ok,100,10,48,48,1.0,1000,20.0,9000,\n"
+                              "block-strips,2,fieldsplit-schur,time-limit,100,10,3,3,120.0,7200,800.0,9100,"
+                              "stopped after 7200 s\n"
+                              "block-strips,2,gamg,time-limit,100,10,0,0,0,3600,0,7000,stopped after 3600 s\n");
+  const std::string md = paper_tables_section(read_csv((dir / "runs.csv").string()), dir.string());
+  EXPECT_NE(md.find("| 2 | fieldsplit-schur | time-limit: stopped after 7200 s | — | 800.000 | ≥ 9100 | — | 120.0 | — | "
+                    "0.03 | — | — |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| 2 | gamg | time-limit: stopped after 3600 s | — | — | — | — | — | — | — | — | — |"),
+            std::string::npos)
+      << md;
+  fs::remove_all(dir);
+}
+
 // The memory breakdown reads the solve that held the most heap from each run's metrics.
 TEST(PaperTables, MemoryBreakdownAtTheLargestSolve) {
   const fs::path dir = fs::temp_directory_path() / "stiction-memory-breakdown-test";
