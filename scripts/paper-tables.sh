@@ -8,7 +8,8 @@
 #   contact-states-*.png  the deformed strips coloured by contact state at the last load
 #                         step (the paper's Figures 11 and 12), from the schur-amg runs
 # BENCH_LEVELS (default 0,1; 0,1,2 gives the full tables), BENCH_SCENES (default both),
-# BENCH_SOLVERS (default: every backend), BENCH_TIME_LIMIT (seconds per run, default 3600),
+# BENCH_SOLVERS (default: every backend), BENCH_TIME_LIMIT (seconds per run, default 3600; a
+# run it stops gives its figures per linear solve over the solves it finished),
 # BENCH_PETSC_OPTIONS (PETSc options for the backends whose prefix they carry; each row
 # names those it ran with) and BENCH_RESUME=1 (continue an interrupted sweep, a killed run
 # from its checkpoint) adjust it; BENCH_OUT moves it. The level-2 rows, resumable over
