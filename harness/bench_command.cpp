@@ -40,7 +40,8 @@ const char* kRunColumns =
     "cells,load_steps,"
     "load_steps_completed,newton_iterations,linear_solves,krylov_iterations,krylov_per_linear_solve,wall_seconds,"
     "assembly_seconds,setup_seconds,solve_seconds,seconds_per_linear_solve,peak_rss_mb,peak_rss_mb_per_process,mumps_memory_mb,"
-    "amg_operator_complexity,krylov_rtol,mumps_ordering,newton_rtol,newton_forcing,petsc_options,detail";
+    "mumps_factor_fraction,amg_operator_complexity,krylov_rtol,mumps_ordering,newton_rtol,newton_forcing,petsc_options,"
+    "detail";
 const char* kStepColumns =
     "scene,level,solver,processes,step,newton_iteration,converged,reason,krylov_iterations,initial_residual,final_residual,"
     "assembly_seconds,setup_seconds,solve_seconds";
@@ -116,6 +117,50 @@ std::optional<Interrupted> interrupted_run(const BenchRun& run, const std::strin
   }
 }
 
+// What a run's [[linear_solve]] records say beyond its totals: the backends' own figures
+// for its row, and its steps.csv lines.
+struct SolveFigures {
+  double mumps_memory_mb = 0;  // the largest, of the whole system's or the P1 block's factorisation
+  // Factor entries as stored (after block low-rank compression) and as the analysis
+  // estimated them at full rank, summed over the factorisations: their ratio is the BLR
+  // compression (1 without it, up to the pivoting's delays).
+  double factor_entries = 0, full_rank_entries = 0;
+  double amg_complexity_sum = 0;
+  int amg_solves = 0;
+  double krylov_rtol = 0;
+  std::string ordering;  // the fill-reducing ordering MUMPS ran (INFOG(7)), of the whole system or the P1 block
+  std::string steps_csv;
+};
+
+SolveFigures solve_figures(const BenchRun& run, const toml::array* solves) {
+  SolveFigures f;
+  if (!solves) return f;
+  for (const auto& node : *solves) {
+    const auto& s = *node.as_table();
+    for (const std::string prefix : {"", "ll_"}) {
+      f.mumps_memory_mb = std::max(f.mumps_memory_mb, s[prefix + "mumps_memory_MB"].value<double>().value_or(0.0));
+      if (const auto code = s[prefix + "mumps_ordering"].value<double>())
+        f.ordering = mumps_ordering_name(static_cast<int>(*code));
+      const auto stored = s[prefix + "mumps_factor_entries"].value<double>();
+      const auto full_rank = s[prefix + "mumps_factor_entries_full_rank"].value<double>();
+      if (stored && full_rank && *full_rank > 0) f.factor_entries += *stored, f.full_rank_entries += *full_rank;
+    }
+    if (auto c = s["amg_operator_complexity"].value<double>()) f.amg_complexity_sum += *c, ++f.amg_solves;
+    f.krylov_rtol = s["ksp_rtol"].value<double>().value_or(f.krylov_rtol);
+    f.steps_csv += fmt::format("{},{},{},{},{},{},{},{},{},{:.6e},{:.6e},{:.4f},{:.4f},{:.4f}\n", run.scene, run.level,
+                               run.solver, run.processes, s["step"].value<int64_t>().value_or(0),
+                               s["newton_iteration"].value<int64_t>().value_or(0),
+                               s["converged"].value<bool>().value_or(false) ? 1 : 0,
+                               s["reason"].value<std::string>().value_or(""),
+                               s["krylov_iterations"].value<int64_t>().value_or(0),
+                               s["initial_residual"].value<double>().value_or(0),
+                               s["final_residual"].value<double>().value_or(0),
+                               s["assembly_seconds"].value<double>().value_or(0),
+                               s["setup_seconds"].value<double>().value_or(0), s["solve_seconds"].value<double>().value_or(0));
+  }
+  return f;
+}
+
 // Appends the run's row to runs.csv and its linear solves to steps.csv; returns its wall time.
 double write_rows(const std::string& out, const BenchRun& run, const ChildResult& child, const std::string& run_dir,
                   const std::string& petsc_options, const std::optional<Interrupted>& continued) {
@@ -133,30 +178,7 @@ double write_rows(const std::string& out, const BenchRun& run, const ChildResult
   const toml::table empty;
   const toml::table& m = have_metrics && metrics["run"].as_table() ? *metrics["run"].as_table() : empty;
   auto num = [&](const char* k) { return m[k].value<double>().value_or(0.0); };
-  double mumps = 0, complexity = 0, krylov_rtol = 0;
-  std::string ordering;  // the fill-reducing ordering MUMPS ran (INFOG(7)), of the whole system or the P1 block
-  int n_complexity = 0;
-  std::string steps;
-  if (const auto* solves = metrics["linear_solve"].as_array()) {
-    for (const auto& node : *solves) {
-      const auto& s = *node.as_table();
-      mumps = std::max({mumps, s["mumps_memory_MB"].value<double>().value_or(0.0),
-                        s["ll_mumps_memory_MB"].value<double>().value_or(0.0)});
-      if (auto c = s["amg_operator_complexity"].value<double>()) complexity += *c, ++n_complexity;
-      krylov_rtol = s["ksp_rtol"].value<double>().value_or(krylov_rtol);
-      for (const char* key : {"mumps_ordering", "ll_mumps_ordering"})
-        if (const auto code = s[key].value<double>()) ordering = mumps_ordering_name(static_cast<int>(*code));
-      steps += fmt::format("{},{},{},{},{},{},{},{},{},{:.6e},{:.6e},{:.4f},{:.4f},{:.4f}\n", run.scene, run.level,
-                           run.solver, run.processes, s["step"].value<int64_t>().value_or(0),
-                           s["newton_iteration"].value<int64_t>().value_or(0),
-                           s["converged"].value<bool>().value_or(false) ? 1 : 0,
-                           s["reason"].value<std::string>().value_or(""),
-                           s["krylov_iterations"].value<int64_t>().value_or(0),
-                           s["initial_residual"].value<double>().value_or(0), s["final_residual"].value<double>().value_or(0),
-                           s["assembly_seconds"].value<double>().value_or(0), s["setup_seconds"].value<double>().value_or(0),
-                           s["solve_seconds"].value<double>().value_or(0));
-    }
-  }
+  const SolveFigures figures = solve_figures(run, metrics["linear_solve"].as_array());
   const double solves = num("linear_solves");
   // On several processes the job's peak is the sum over its processes (metrics.toml, each
   // process's own VmHWM); on one, the child's.
@@ -185,17 +207,20 @@ double write_rows(const std::string& out, const BenchRun& run, const ChildResult
   const std::string row = fmt::format(
       "{},{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.2f},{:.3f},"
       "{:.3f},{:.3f},{:.3f},{:.4f},"
-      "{:.1f},{:.1f},{:.0f},{:.3f},{},{},{},{},{},{}",
+      "{:.1f},{:.1f},{:.0f},{},{:.3f},{},{},{},{},{},{}",
       run.scene, run.level, run.solver, run.processes, status, m["converged"].value<bool>().value_or(false) ? 1 : 0,
       csv_field(m["reason"].value<std::string>().value_or(status)), num("unknowns"), num("unknowns_u_l"),
       num("unknowns_u_q"), num("unknowns_p"), num("multipliers"), num("vertices"), num("cells"), num("load_steps"), num("load_steps_completed"), num("newton_iterations"), solves,
       num("krylov_iterations"), solves > 0 ? num("krylov_iterations") / solves : 0.0, wall,
       num("assembly_seconds"), num("setup_seconds"), num("solve_seconds"),
-      seconds_per_converged_solve(metrics["linear_solve"].as_array()), peak_total, peak_per_process, mumps,
-      n_complexity ? complexity / n_complexity : 0.0, krylov_rtol > 0 ? fmt::format("{:g}", krylov_rtol) : "",
-      ordering, m["newton_rtol"] ? fmt::format("{:g}", num("newton_rtol")) : std::string(),
+      seconds_per_converged_solve(metrics["linear_solve"].as_array()), peak_total, peak_per_process,
+      figures.mumps_memory_mb,
+      figures.full_rank_entries > 0 ? fmt::format("{:.3f}", figures.factor_entries / figures.full_rank_entries) : "",
+      figures.amg_solves ? figures.amg_complexity_sum / figures.amg_solves : 0.0,
+      figures.krylov_rtol > 0 ? fmt::format("{:g}", figures.krylov_rtol) : "", figures.ordering,
+      m["newton_rtol"] ? fmt::format("{:g}", num("newton_rtol")) : std::string(),
       m["newton_forcing"].value<std::string>().value_or(""), csv_field(petsc_options), csv_field(detail));
-  if (!steps.empty()) append_durably(out + "/steps.csv", steps);
+  if (!figures.steps_csv.empty()) append_durably(out + "/steps.csv", figures.steps_csv);
   append_durably(out + "/runs.csv", row);
   return wall;
 }

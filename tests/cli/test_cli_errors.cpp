@@ -662,6 +662,23 @@ TEST_F(StictionCli, BenchRowsNameTheMumpsOrderingAndResumeAnOlderSweep) {
   EXPECT_EQ(refused.error_lines().size(), 1u) << refused.err;
 }
 
+// A row gives the factor entries MUMPS stored over its full-rank estimate: the block low-rank
+// compression of lu-mumps-blr (0.67 on block-compression level 0, the whole run), about 1
+// for the full-rank lu-mumps, and nothing for a backend without a MUMPS factorisation.
+TEST_F(StictionCli, BenchRowsGiveTheBlockLowRankCompressionOfTheFactors) {
+  const CliRun sweep = CliRun::of({"bench", "--scenes", "block-compression", "--solvers", "lu-mumps,lu-mumps-blr,gamg",
+                                   "--quick", "--out", (dir_ / "sweep").string()},
+                                  dir_);
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+  std::map<std::string, std::string> fraction;
+  for (const auto& row : stiction::harness::read_csv((dir_ / "sweep" / "runs.csv").string()).rows)
+    fraction[row.at("solver")] = row.at("mumps_factor_fraction");
+  ASSERT_EQ(fraction.size(), 3u);
+  EXPECT_NEAR(std::stod(fraction["lu-mumps"]), 1.0, 0.05);
+  EXPECT_LT(std::stod(fraction["lu-mumps-blr"]), 0.9);
+  EXPECT_EQ(fraction["gamg"], "");
+}
+
 // A row names the PETSc options the sweep gave its backend beyond the defaults, and the
 // report shows them beside the status, so that rows run with other settings are told apart.
 TEST_F(StictionCli, BenchRowsNameThePetscOptionsTheirBackendRanWith) {
