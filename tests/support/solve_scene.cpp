@@ -52,6 +52,26 @@ double SolvedScene::mean_krylov_per_newton_step() const {
   return newton > 0 ? krylov / newton : 0;
 }
 
+const char* minimal_bar_scene() {
+  return R"(
+[[material]]
+name = "steel"
+model = "linear"
+E = 200.0
+nu = 0.3
+
+[[body]]
+name = "bar"
+material = "steel"
+mesh = { generator = "structured-box", size = [4.0, 1.0], cells = [4, 1] }
+
+[[dirichlet]]
+boundary = "xmin"
+components = ["x", "y"]
+value = [0.0, 0.0]
+)";
+}
+
 std::string replaced(std::string text, const std::string& from, const std::string& to) {
   const auto pos = text.find(from);
   EXPECT_NE(pos, std::string::npos) << "'" << from << "' not in the scene text";

@@ -26,6 +26,10 @@ SolvedScene solve_scene_text(const std::string& toml, int level, const std::stri
 SolvedScene solve_builtin(const std::string& name, int level, const std::string& backend,
                           const std::vector<std::string>& overrides = {});
 
+// The smallest scene that builds: a linear-elastic 4 x 1 bar of four cells, clamped at x = 0,
+// with the default load (one step).
+const char* minimal_bar_scene();
+
 // Replaces the first occurrence of `from` by `to` (fails the test when absent).
 std::string replaced(std::string text, const std::string& from, const std::string& to);
 

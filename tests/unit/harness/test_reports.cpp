@@ -43,17 +43,23 @@ void write(const fs::path& p, const std::string& text) {
   std::ofstream(p) << text;
 }
 
+// A fresh sweep directory `name` under the temporary directory, holding runs.csv.
+fs::path sweep_with_runs(const std::string& name, const std::string& runs_csv) {
+  const fs::path dir = fs::temp_directory_path() / name;
+  fs::remove_all(dir);
+  write(dir / "runs.csv", runs_csv);
+  return dir;
+}
+
 // Two runs of block-strips at level 0: lu-mumps (100 s, 2 s per solve, 600 MB) and
 // schur-amg (20 s, 0.25 s, 150 MB), whose top forces differ by 1e-3 relative.
 TEST(PaperTables, RatiosMeshCountsAndForcesBesideThePapers) {
-  const fs::path dir = fs::temp_directory_path() / "stiction-paper-tables-test";
-  fs::remove_all(dir);
-  const std::string header =
+  const fs::path dir = sweep_with_runs(
+      "stiction-paper-tables-test",
       "scene,level,solver,status,unknowns,unknowns_u_l,unknowns_u_q,unknowns_p,multipliers,vertices,cells,"
-      "newton_iterations,krylov_per_linear_solve,wall_seconds,seconds_per_linear_solve,peak_rss_mb,detail\n";
-  write(dir / "runs.csv", header +
-                              "block-strips,0,lu-mumps,ok,49482,8025,41457,0,4029,2675,8900,48,1.0,100,2.0,600,\n"
-                              "block-strips,0,schur-amg,ok,49482,8025,41457,0,4029,2675,8900,48,60.0,20,0.25,150,\n");
+      "newton_iterations,krylov_per_linear_solve,wall_seconds,seconds_per_linear_solve,peak_rss_mb,detail\n"
+      "block-strips,0,lu-mumps,ok,49482,8025,41457,0,4029,2675,8900,48,1.0,100,2.0,600,\n"
+      "block-strips,0,schur-amg,ok,49482,8025,41457,0,4029,2675,8900,48,60.0,20,0.25,150,\n");
   const std::string steps = "step,time,reaction_block/top_x,reaction_block/top_y,reaction_block/top_z\n";
   write(dir / "runs/block-strips-L0-lu-mumps/steps.csv", steps + "1,1,0,0,5\n8,8,3,0,-4\n");
   write(dir / "runs/block-strips-L0-schur-amg/steps.csv", steps + "8,8,3.003,0,-4.004\n");
@@ -80,16 +86,13 @@ TEST(PaperTables, RatiosMeshCountsAndForcesBesideThePapers) {
 // ratio per solve against lu-mumps), its peak memory as a lower bound and no totals; one
 // stopped before any solve shows none.
 TEST(PaperTables, TimeLimitedRunShowsItsFiguresPerSolve) {
-  const fs::path dir = fs::temp_directory_path() / "stiction-paper-tables-partial-test";
-  fs::remove_all(dir);
-  const std::string header =
+  const fs::path dir = sweep_with_runs(
+      "stiction-paper-tables-partial-test",
       "scene,level,solver,status,unknowns,multipliers,newton_iterations,linear_solves,krylov_per_linear_solve,"
-      "wall_seconds,seconds_per_linear_solve,peak_rss_mb,detail\n";
-  write(dir / "runs.csv", header +
-                              "block-strips,2,lu-mumps,ok,100,10,48,48,1.0,1000,20.0,9000,\n"
-                              "block-strips,2,fieldsplit-schur,time-limit,100,10,3,3,120.0,7200,800.0,9100,"
-                              "stopped after 7200 s\n"
-                              "block-strips,2,gamg,time-limit,100,10,0,0,0,3600,0,7000,stopped after 3600 s\n");
+      "wall_seconds,seconds_per_linear_solve,peak_rss_mb,detail\n"
+      "block-strips,2,lu-mumps,ok,100,10,48,48,1.0,1000,20.0,9000,\n"
+      "block-strips,2,fieldsplit-schur,time-limit,100,10,3,3,120.0,7200,800.0,9100,stopped after 7200 s\n"
+      "block-strips,2,gamg,time-limit,100,10,0,0,0,3600,0,7000,stopped after 3600 s\n");
   const std::string md = paper_tables_section(read_csv((dir / "runs.csv").string()), dir.string());
   EXPECT_NE(md.find("| 2 | fieldsplit-schur | time-limit: stopped after 7200 s | — | 800.000 | ≥ 9100 | — | 120.0 | — | "
                     "0.03 | — | — |"),
@@ -103,11 +106,10 @@ TEST(PaperTables, TimeLimitedRunShowsItsFiguresPerSolve) {
 
 // The memory breakdown reads the solve that held the most heap from each run's metrics.
 TEST(PaperTables, MemoryBreakdownAtTheLargestSolve) {
-  const fs::path dir = fs::temp_directory_path() / "stiction-memory-breakdown-test";
-  fs::remove_all(dir);
-  write(dir / "runs.csv",
-        "scene,level,solver,status,peak_rss_mb,detail\nblock-strips,1,schur-amg,ok,900,\nblock-strips,1,lu-mumps,ok,2000,\n"
-        "block-strips,1,ilu-gmres,ok,700,\n");
+  const fs::path dir = sweep_with_runs(
+      "stiction-memory-breakdown-test",
+      "scene,level,solver,status,peak_rss_mb,detail\nblock-strips,1,schur-amg,ok,900,\nblock-strips,1,lu-mumps,ok,2000,\n"
+      "block-strips,1,ilu-gmres,ok,700,\n");
   write(dir / "runs/block-strips-L1-lu-mumps/metrics.toml",
         "[[linear_solve]]\nmemory_heap_MB = 1500.0\nmemory_matrix_MB = 320.0\nmemory_setup_MB = 1000.0\n"
         "memory_krylov_MB = 0.0\n");

@@ -10,32 +10,17 @@
 
 #include "run_metrics.hpp"
 #include "scene/scene.hpp"
+#include "support/solve_scene.hpp"
 
 namespace stiction::harness {
 namespace {
 
 namespace fs = std::filesystem;
 
-const char* kBar = R"(
-[[material]]
-name = "steel"
-model = "linear"
-E = 200.0
-nu = 0.3
-
-[[body]]
-name = "bar"
-material = "steel"
-mesh = { generator = "structured-box", size = [4.0, 1.0], cells = [4, 1] }
-
-[[dirichlet]]
-boundary = "xmin"
-components = ["x", "y"]
-value = [0.0, 0.0]
-
-[load]
-steps = 2
-)";
+// The bar in two load steps.
+std::unique_ptr<scene::Scene> two_step_bar() {
+  return scene::build_scene(std::string(test::minimal_bar_scene()) + "\n[load]\nsteps = 2\n", "bar.toml", ".");
+}
 
 nonlinear::NewtonIteration iteration(int krylov, double solve_seconds) {
   nonlinear::NewtonIteration it;
@@ -48,19 +33,32 @@ nonlinear::NewtonIteration iteration(int krylov, double solve_seconds) {
 
 toml::table read(const fs::path& p) { return toml::parse_file(p.string()); }
 
-TEST(RunRecorder, KeepsTheSolvesOfTheLoadStepUnderWay) {
-  const fs::path dir = fs::temp_directory_path() / "stiction-run-recorder-test";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  const fs::path path = dir / "metrics.toml";
-  const auto scene = scene::build_scene(kBar, "bar.toml", ".");
-  RunRecorder record(path.string(), *scene, RunSummary{"schur-amg", ""}, PETSC_COMM_WORLD, std::nullopt,
-                     std::chrono::steady_clock::now(), std::chrono::seconds(0));
+// A record of the two-step bar in a directory of its own, rewritten inside a load step when
+// its last write is `interval` old.
+class RunRecorderTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  RunRecorder recorder(std::chrono::duration<double> interval) const {
+    return RunRecorder(path_.string(), *scene_, RunSummary{"schur-amg", ""}, PETSC_COMM_WORLD, std::nullopt,
+                       std::chrono::steady_clock::now(), interval);
+  }
+  const fs::path dir_ = fs::temp_directory_path() /
+                        ("stiction-run-recorder-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+  const fs::path path_ = dir_ / "metrics.toml";
+  const std::unique_ptr<scene::Scene> scene_ = two_step_bar();
+};
+
+TEST_F(RunRecorderTest, KeepsTheSolvesOfTheLoadStepUnderWay) {
+  RunRecorder record = recorder(std::chrono::seconds(0));
 
   // Two Newton iterations of load step 1, which has not ended: each is written at once.
   record.add_iteration(1, 0.5, iteration(40, 2.0));
   record.add_iteration(1, 0.5, iteration(60, 3.0));
-  toml::table m = read(path);
+  toml::table m = read(path_);
   EXPECT_EQ(m["run"]["reason"].value<std::string>(), "INCOMPLETE");
   EXPECT_EQ(m["run"]["linear_solves"].value<int64_t>(), 2);
   EXPECT_EQ(m["run"]["krylov_iterations"].value<int64_t>(), 100);
@@ -78,7 +76,7 @@ TEST(RunRecorder, KeepsTheSolvesOfTheLoadStepUnderWay) {
   step1.completes_step = true;
   step1.iterations = {iteration(40, 2.0), iteration(60, 3.0)};
   record.add(step1);
-  m = read(path);
+  m = read(path_);
   EXPECT_EQ(m["run"]["linear_solves"].value<int64_t>(), 2);
   EXPECT_EQ(m["run"]["load_steps_completed"].value<int64_t>(), 1);
   ASSERT_EQ(m["step"].as_array()->size(), 1u);
@@ -87,29 +85,21 @@ TEST(RunRecorder, KeepsTheSolvesOfTheLoadStepUnderWay) {
   // One iteration into step 2: three solves on record; a restart from the checkpoint of
   // step 1 keeps the two of step 1 only.
   record.add_iteration(2, 1.0, iteration(80, 4.0));
-  m = read(path);
+  m = read(path_);
   EXPECT_EQ(m["run"]["linear_solves"].value<int64_t>(), 3);
   EXPECT_EQ(m["step"][1]["reason"].value<std::string>(), "IN_PROGRESS");
-  const auto earlier = read_earlier_segments(path.string(), scene->name, scene->level, "schur-amg", 1);
+  const auto earlier = read_earlier_segments(path_.string(), scene_->name, scene_->level, "schur-amg", 1);
   ASSERT_TRUE(earlier);
   EXPECT_EQ(earlier->linear_solves.size(), 2u);
   EXPECT_EQ(earlier->steps.size(), 1u);
-  fs::remove_all(dir);
 }
 
 // Inside a load step the record is rewritten only when the last write is old enough: a run
 // of many short iterations does not rewrite its growing record at every one.
-TEST(RunRecorder, WritesTheStepUnderWayAtMostOncePerInterval) {
-  const fs::path dir = fs::temp_directory_path() / "stiction-run-recorder-interval-test";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  const fs::path path = dir / "metrics.toml";
-  const auto scene = scene::build_scene(kBar, "bar.toml", ".");
-  RunRecorder record(path.string(), *scene, RunSummary{"schur-amg", ""}, PETSC_COMM_WORLD, std::nullopt,
-                     std::chrono::steady_clock::now(), std::chrono::hours(1));
+TEST_F(RunRecorderTest, WritesTheStepUnderWayAtMostOncePerInterval) {
+  RunRecorder record = recorder(std::chrono::hours(1));
   record.add_iteration(1, 0.5, iteration(40, 2.0));
-  EXPECT_FALSE(fs::exists(path)) << "written before its interval";
-  fs::remove_all(dir);
+  EXPECT_FALSE(fs::exists(path_)) << "written before its interval";
 }
 
 }  // namespace

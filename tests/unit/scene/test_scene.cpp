@@ -13,23 +13,7 @@
 namespace stiction::scene {
 namespace {
 
-const char* kMinimal = R"(
-[[material]]
-name = "steel"
-model = "linear"
-E = 200.0
-nu = 0.3
-
-[[body]]
-name = "bar"
-material = "steel"
-mesh = { generator = "structured-box", size = [4.0, 1.0], cells = [4, 1] }
-
-[[dirichlet]]
-boundary = "xmin"
-components = ["x", "y"]
-value = [0.0, 0.0]
-)";
+const std::string kMinimal = test::minimal_bar_scene();
 
 std::string error_of(const std::string& text) {
   try {
