@@ -41,13 +41,14 @@ double estimate_seconds(const BenchRun& run, const FinishedRuns& finished) {
 }
 
 std::string time_left(const std::vector<BenchRun>& runs, size_t current, double elapsed, const FinishedRuns& finished) {
-  double left = 0;
+  double left = 0, overrun_estimate = 0;
   int remaining = 0, unknown = 0;
   for (size_t k = current; k < runs.size(); ++k) {
     if (finished.has(runs[k])) continue;
     ++remaining;
     const double t = estimate_seconds(runs[k], finished);
     if (t <= 0) ++unknown;
+    if (k == current && t > 0 && elapsed > t) overrun_estimate = t;
     left += k == current ? std::max(t - elapsed, 0.0) : t;
   }
   const auto runs_text = [](int n) { return fmt::format("{} run{}", n, n > 1 ? "s" : ""); };
@@ -55,6 +56,8 @@ std::string time_left(const std::vector<BenchRun>& runs, size_t current, double 
   if (unknown == remaining) return fmt::format("time left not yet estimable ({} to go)", runs_text(remaining));
   std::string text = fmt::format("about {:.0f} min left", left / 60);
   if (unknown) text += fmt::format(" + {} not yet estimable", runs_text(unknown));
+  // A run past its estimate counts nothing more, which alone would read as a sweep about to end.
+  if (overrun_estimate > 0) text += fmt::format(" (this run past its estimate of {:.0f} min)", overrun_estimate / 60);
   return text;
 }
 

@@ -27,7 +27,7 @@ struct FinishedRuns {
 double estimate_seconds(const BenchRun& run, const FinishedRuns& finished);
 
 // "about N min left" for runs[current..] (the current one `elapsed` seconds in), with the
-// runs that cannot be estimated yet counted apart.
+// runs that cannot be estimated yet counted apart, and a current run past its estimate named.
 std::string time_left(const std::vector<BenchRun>& runs, size_t current, double elapsed, const FinishedRuns& finished);
 
 }  // namespace stiction::harness

@@ -37,8 +37,8 @@ TEST(BenchEstimate, TimeLeftSubtractsTheCurrentRunsElapsedTimeAndCountsTheUnknow
   // Run 1 (level 1): 15 x 60 s = 900 s, 300 s of it elapsed; run 2 has no basis.
   EXPECT_EQ(time_left(runs, 1, 300.0, finished), "about 10 min left + 1 run not yet estimable");
   finished.add({"a", "gamg", 1}, 120.0);
-  // Run 2 now: 15 x 120 s = 1800 s; the current run past its estimate counts 0.
-  EXPECT_EQ(time_left(runs, 1, 1000.0, finished), "about 30 min left");
+  // Run 2 now: 15 x 120 s = 1800 s; the current run past its estimate counts 0, and says so.
+  EXPECT_EQ(time_left(runs, 1, 1000.0, finished), "about 30 min left (this run past its estimate of 15 min)");
 }
 
 }  // namespace
