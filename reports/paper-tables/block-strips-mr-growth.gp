@@ -8,18 +8,27 @@ set xlabel 'unknowns of the Newton system'
 set output 'block-strips-mr-time-per-solve.svg'
 set ylabel 's / linear solve (set-up + Krylov)'
 set title 'block-strips-mr: time per linear solve'
-plot data index 0 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.27)', \
-     data index 1 using 1:2 with linespoints pt 7 lw 2 title 'schur-amg (p = 1.19)'
+plot data index 0 using 1:2 with linespoints pt 7 lw 2 title 'fieldsplit-schur (p = 1.29)', \
+     data index 1 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.27)', \
+     data index 2 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.35)', \
+     data index 3 using 1:2 with linespoints pt 7 lw 2 title 'schur-amg (p = 1.19)', \
+     data index 4 using 1:2 with linespoints pt 7 lw 2 title 'schur-gamg (p = 0.92)'
 set output 'block-strips-mr-peak-memory.svg'
 set ylabel 'peak resident memory (MB)'
 set title 'block-strips-mr: peak memory'
-plot data index 0 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.26)', \
-     data index 1 using 1:3 with linespoints pt 7 lw 2 title 'schur-amg (p = 0.82)'
+plot data index 0 using 1:3 with linespoints pt 7 lw 2 title 'fieldsplit-schur (p = 0.97)', \
+     data index 1 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.26)', \
+     data index 2 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.03)', \
+     data index 3 using 1:3 with linespoints pt 7 lw 2 title 'schur-amg (p = 0.82)', \
+     data index 4 using 1:3 with linespoints pt 7 lw 2 title 'schur-gamg (p = 0.79)'
 unset logscale
 set xlabel 'mesh level'
 set xtics 1
 set ylabel 'Krylov iterations per Newton step'
 set output 'block-strips-mr-krylov.svg'
 set title 'block-strips-mr: Krylov iterations per Newton step'
-plot data index 0 using 4:5 with linespoints pt 7 lw 2 title 'lu-mumps', \
-     data index 1 using 4:5 with linespoints pt 7 lw 2 title 'schur-amg'
+plot data index 0 using 4:5 with linespoints pt 7 lw 2 title 'fieldsplit-schur', \
+     data index 1 using 4:5 with linespoints pt 7 lw 2 title 'lu-mumps', \
+     data index 2 using 4:5 with linespoints pt 7 lw 2 title 'lu-mumps-blr', \
+     data index 3 using 4:5 with linespoints pt 7 lw 2 title 'schur-amg', \
+     data index 4 using 4:5 with linespoints pt 7 lw 2 title 'schur-gamg'
