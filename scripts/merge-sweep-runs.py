@@ -58,6 +58,38 @@ def factor_fraction(metrics_path):
     return f"{stored / full_rank:.3f}" if full_rank > 0 else ""
 
 
+def is_int(text):
+    return text.lstrip("-").isdigit()
+
+
+def step_line_key(line):
+    """(scene, level, solver, processes) of a steps.csv line, in either of its formats: with
+    the processes column (its 7th field, `converged`, is 0 or 1) or without (the 7th field is
+    the linear solver's reason)."""
+    f = line.split(",")
+    if len(f) > 6 and is_int(f[6]):
+        return tuple(f[:4])
+    return tuple(f[:3]) + ("1",)
+
+
+def with_processes(line):
+    f = line.split(",")
+    return line if len(f) > 6 and is_int(f[6]) else ",".join(f[:3] + ["1"] + f[3:])
+
+
+def merge_steps(source, target, merged):
+    new_lines = [l for l in source.read_text().splitlines() if l and not l.startswith("#")]
+    header, new_lines = new_lines[0], new_lines[1:]
+    comments, kept = [], []
+    for line in target.read_text().splitlines():
+        if line.startswith("#"):
+            comments.append(line)
+        elif line and not line.startswith("scene,") and step_line_key(line) not in merged:
+            kept.append(with_processes(line))
+    added = [l for l in new_lines if step_line_key(l) in merged]
+    target.write_text("\n".join(comments + [header] + kept + added) + "\n")
+
+
 def merged_columns(to_columns, from_columns):
     if set(to_columns) <= set(from_columns):
         return from_columns
@@ -90,16 +122,9 @@ def main(argv):
         for r in out_rows:
             writer.writerow({c: r.get(c) or "" for c in columns})
 
-    # steps.csv: the merged runs' lines replace theirs.
-    step_comments, step_columns, step_rows = read_table(target / "steps.csv")
-    _, _, new_steps = read_table(source / "steps.csv")
-    kept = [s for s in step_rows if key(s) not in merged]
-    with (target / "steps.csv").open("w", newline="") as f:
-        f.write("\n".join(step_comments) + "\n")
-        writer = csv.DictWriter(f, fieldnames=step_columns, extrasaction="ignore", lineterminator="\n")
-        writer.writeheader()
-        for s in kept + [s for s in new_steps if key(s) in merged]:
-            writer.writerow(s)
+    # steps.csv: the merged runs' lines replace theirs, as the sweeps wrote them (a field may
+    # hold an unquoted comma); lines of a sweep made before the processes column get it.
+    merge_steps(source / "steps.csv", target / "steps.csv", merged)
 
     for r in rows:
         src, dst = source / "runs" / run_id(r), target / "runs" / run_id(r)
