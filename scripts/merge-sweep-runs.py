@@ -9,8 +9,8 @@ RUN names a run as its directory does (block-strips-L2-fieldsplit-schur); withou
 run of FROM/runs.csv is merged. For each: its row replaces TO's row of the same scene, level,
 solver and processes (or is appended), its linear solves replace that run's lines of
 TO/steps.csv, and FROM/runs/RUN replaces TO/runs/RUN (contact.csv gzipped). A comment line in
-TO/runs.csv names what was merged from where; the run's own files keep its command line,
-revision and machine.
+TO/runs.csv names what was merged from where, with that sweep's command line and last
+resumption; the run's own files keep each segment's command line, revision and machine.
 
 Columns are matched by name: a column one table lacks is empty in its rows. A row without
 `mumps_factor_fraction` (a sweep made before the column) gets it from the run's metrics.toml
@@ -90,6 +90,13 @@ def merge_steps(source, target, merged):
     target.write_text("\n".join(comments + [header] + kept + added) + "\n")
 
 
+def provenance(comments):
+    """How the source sweep was made: its command line and its last resumption, if any."""
+    made = [c[2:] for c in comments if c.startswith("# command:")][:1]
+    made += [c[2:] for c in comments if c.startswith("# resumed:")][-1:]
+    return "".join(f"; that sweep's {m}" for m in made)
+
+
 def merged_columns(to_columns, from_columns):
     if set(to_columns) <= set(from_columns):
         return from_columns
@@ -101,7 +108,7 @@ def main(argv):
     if len(argv) < 3:
         sys.exit(__doc__)
     source, target, wanted = Path(argv[1]), Path(argv[2]), set(argv[3:])
-    _, from_columns, from_rows = read_table(source / "runs.csv")
+    from_comments, from_columns, from_rows = read_table(source / "runs.csv")
     comments, to_columns, to_rows = read_table(target / "runs.csv")
     rows = [r for r in from_rows if not wanted or run_id(r) in wanted]
     missing = wanted - {run_id(r) for r in rows}
@@ -114,7 +121,7 @@ def main(argv):
         if "mumps_factor_fraction" in columns and not r.get("mumps_factor_fraction"):
             r["mumps_factor_fraction"] = factor_fraction(target / "runs" / run_id(r) / "metrics.toml") \
                 if key(r) not in merged else factor_fraction(source / "runs" / run_id(r) / "metrics.toml")
-    comments.append(f"# merged from {source}: {', '.join(run_id(r) for r in rows)}")
+    comments.append(f"# merged from {source}: {', '.join(run_id(r) for r in rows)}{provenance(from_comments)}")
     with (target / "runs.csv").open("w", newline="") as f:
         f.write("\n".join(comments) + "\n")
         writer = csv.DictWriter(f, fieldnames=columns, extrasaction="ignore", lineterminator="\n")
