@@ -34,12 +34,6 @@ std::string per_solve_cell(const Row& r, const char* key, const char* format) {
   return stopped_with_solves(r) ? fmt::format(fmt::runtime(format), number(r, key)) : cell(r, key, format);
 }
 
-// The peak memory: a lower bound ("≥") for a run stopped by its time limit.
-std::string peak_cell(const Row& r) {
-  if (finished(r)) return fmt::format("{:.0f}", number(r, "peak_rss_mb"));
-  return stopped_with_solves(r) ? fmt::format("≥ {:.0f}", number(r, "peak_rss_mb")) : "—";
-}
-
 std::string ratio(double reference, double value) {
   if (reference <= 0 || value <= 0) return "—";
   return fmt::format("{:.2f}", reference / value);
@@ -137,7 +131,7 @@ void write_bench_report(const std::string& out_dir) {
                         run_status_text(r), number(r, "unknowns") + number(r, "multipliers"),
                         cell(r, "wall_seconds", "{:.1f}"),
                         number(r, "seconds_per_linear_solve") > 0 ? per_solve_cell(r, "seconds_per_linear_solve", "{:.3f}") : "—",
-                        peak_cell(r), cell(r, "newton_iterations", "{:.0f}"), per_solve_cell(r, "linear_solves", "{:.0f}"),
+                        peak_memory_text(r), cell(r, "newton_iterations", "{:.0f}"), per_solve_cell(r, "linear_solves", "{:.0f}"),
                         per_solve_cell(r, "krylov_per_linear_solve", "{:.1f}"),
                         per_solve && ref ? ratio(number(*ref, "seconds_per_linear_solve"), number(r, "seconds_per_linear_solve")) : "—",
                         ok && ref ? ratio(number(*ref, "peak_rss_mb"), number(r, "peak_rss_mb")) : "—");

@@ -79,4 +79,10 @@ bool stopped_with_solves(const std::map<std::string, std::string>& row) {
          number(row, "seconds_per_linear_solve") > 0;
 }
 
+std::string peak_memory_text(const std::map<std::string, std::string>& row) {
+  const std::string mb = fmt::format("{:.0f}", number(row, "peak_rss_mb"));
+  if (row.at("status") == "ok") return mb;
+  return stopped_with_solves(row) ? "≥ " + mb : "—";
+}
+
 }  // namespace stiction::harness

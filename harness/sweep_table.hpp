@@ -28,5 +28,8 @@ std::string run_status_text(const std::map<std::string, std::string>& row);
 // figures (seconds and Krylov iterations per solve, over those solves) are measured, its
 // totals are not, and its peak memory is a lower bound of the whole run's.
 bool stopped_with_solves(const std::map<std::string, std::string>& row);
+// A run's peak memory in MB as the report tables show it: the figure of a finished run, a
+// lower bound ("≥") for one stopped_with_solves, "—" otherwise.
+std::string peak_memory_text(const std::map<std::string, std::string>& row);
 
 }  // namespace stiction::harness

@@ -32,7 +32,11 @@ def read_table(path):
     for line in path.read_text().splitlines():
         (comments if line.startswith("#") else lines).append(line)
     reader = csv.DictReader(lines)
-    return comments, list(reader.fieldnames or []), list(reader)
+    rows = list(reader)
+    for row in rows:  # a field more than the header has would be dropped on writing
+        if None in row:
+            sys.exit(f"merge-sweep-runs: {path} has a line with more fields than its header: {row[None]}")
+    return comments, list(reader.fieldnames or []), rows
 
 
 def run_id(row):
