@@ -329,7 +329,11 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
       finished_runs.add({row.at("scene"), row.at("solver"), std::stoi(row.at("level")), std::stoi(processes)},
                         std::strtod(row.at("wall_seconds").c_str(), nullptr));
   }
-  if (!header.empty()) append_durably(out + "/steps.csv", header + kStepColumns);
+  const std::string steps_csv = out + "/steps.csv";
+  if (!header.empty())
+    append_durably(steps_csv, header + kStepColumns);
+  else if (fs::exists(steps_csv))  // a resumed sweep of an older version: its lines get the new columns too
+    upgrade_sweep_columns(steps_csv, kStepColumns);
 
   std::vector<BenchRun> runs;
   for (int level : o.levels)

@@ -49,19 +49,22 @@ CsvTable open_sweep_table(const std::string& path, const std::string& columns, b
     return {};
   }
   if (!resume) throw Error(fmt::format("'{}' exists: pass --resume to continue that sweep or choose another --out", path));
+  CsvTable previous = upgrade_sweep_columns(path, columns);
+  append_durably(path, "# resumed: " + info.command_line + " at " + info.date + ", git " + info.git_revision);
+  return previous;
+}
+
+CsvTable upgrade_sweep_columns(const std::string& path, const std::string& columns) {
   CsvTable previous = read_csv(path);
   std::string found;
   for (const auto& c : previous.columns) found += (found.empty() ? "" : ",") + c;
-  if (found != columns) {
-    if (!upgrade_columns(path, previous, columns))
-      throw Error(fmt::format("'{}' has columns this stiction does not write (another version's sweep): start a new "
-                              "sweep in another --out",
-                              path));
-    append_durably(path, "# columns added by a newer version: the rows above have them empty");
-    previous = read_csv(path);
-  }
-  append_durably(path, "# resumed: " + info.command_line + " at " + info.date + ", git " + info.git_revision);
-  return previous;
+  if (found == columns) return previous;
+  if (!upgrade_columns(path, previous, columns))
+    throw Error(fmt::format("'{}' has columns this stiction does not write (another version's sweep): start a new "
+                            "sweep in another --out",
+                            path));
+  append_durably(path, "# columns added by a newer version: the rows above have them empty");
+  return read_csv(path);
 }
 
 std::string run_status_text(const std::map<std::string, std::string>& row) {

@@ -19,6 +19,11 @@ namespace stiction::harness {
 CsvTable open_sweep_table(const std::string& path, const std::string& columns, bool resume, const RunInfo& info,
                           const std::function<std::string()>& header);
 
+// The upgrade step of open_sweep_table alone, for an existing file a resumed sweep appends
+// to beside its main table (bench's steps.csv): rewritten with the missing columns, or
+// refused when it has one this version does not write; returns its rows.
+CsvTable upgrade_sweep_columns(const std::string& path, const std::string& columns);
+
 // A bench run's status as the report tables show it: "ok", followed by the PETSc options the
 // sweep gave its backend beyond its defaults (the petsc_options column) when there are any;
 // otherwise the status and what stopped the run.

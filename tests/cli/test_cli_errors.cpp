@@ -617,7 +617,8 @@ TEST_F(StictionCli, AtlasNamesEveryCellsEndAndReportsAHang) {
 
 // Every run row names the ordering MUMPS ran and the Newton test it used; a sweep written
 // before the ordering column existed is resumed with the column added (empty in its rows,
-// which keep their values), and one with a column this version does not write is refused.
+// which keep their values; its steps.csv likewise), and one with a column this version does
+// not write is refused.
 TEST_F(StictionCli, BenchRowsNameTheMumpsOrderingAndResumeAnOlderSweep) {
   const std::vector<std::string> bench = {"bench", "--scenes", "cantilever-2d", "--solvers", "lu-mumps", "--quick"};
   auto with_out = [&](const std::string& out, bool resume) {
@@ -644,6 +645,16 @@ TEST_F(StictionCli, BenchRowsNameTheMumpsOrderingAndResumeAnOlderSweep) {
     }
   fs::create_directories(dir_ / "old");
   std::ofstream(dir_ / "old" / "runs.csv") << "# an older sweep\n" << old_header << "\n" << old_row << "\n";
+  // Its steps.csv as that version wrote it too: without the processes column.
+  const auto steps = stiction::harness::read_csv((dir_ / "sweep" / "steps.csv").string());
+  ASSERT_FALSE(steps.rows.empty());
+  std::string old_steps_header, old_step;
+  for (const auto& c : steps.columns)
+    if (c != "processes") {
+      old_steps_header += (old_steps_header.empty() ? "" : ",") + c;
+      old_step += (old_step.empty() ? "" : ",") + steps.rows[0].at(c);
+    }
+  std::ofstream(dir_ / "old" / "steps.csv") << "# an older sweep\n" << old_steps_header << "\n" << old_step << "\n";
   const CliRun resumed = with_out("old", true);
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
   const auto upgraded = stiction::harness::read_csv((dir_ / "old" / "runs.csv").string());
@@ -653,6 +664,14 @@ TEST_F(StictionCli, BenchRowsNameTheMumpsOrderingAndResumeAnOlderSweep) {
   for (const auto& c : table.columns)
     if (c != "mumps_ordering") {
       EXPECT_EQ(upgraded.rows[0].at(c), table.rows[0].at(c)) << c;
+    }
+  const auto upgraded_steps = stiction::harness::read_csv((dir_ / "old" / "steps.csv").string());
+  EXPECT_EQ(upgraded_steps.columns, steps.columns) << "the lines a resumed sweep appends match the header";
+  ASSERT_EQ(upgraded_steps.rows.size(), 1u);
+  EXPECT_EQ(upgraded_steps.rows[0].at("processes"), "");
+  for (const auto& c : steps.columns)
+    if (c != "processes") {
+      EXPECT_EQ(upgraded_steps.rows[0].at(c), steps.rows[0].at(c)) << c;
     }
 
   fs::create_directories(dir_ / "other");
