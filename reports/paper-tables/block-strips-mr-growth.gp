@@ -12,7 +12,7 @@ plot data index 0 using 1:2 with linespoints pt 7 lw 2 title 'fieldsplit-schur (
      data index 1 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.27)', \
      data index 2 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.35)', \
      data index 3 using 1:2 with linespoints pt 7 lw 2 title 'schur-amg (p = 1.19)', \
-     data index 4 using 1:2 with linespoints pt 7 lw 2 title 'schur-gamg (p = 0.92)'
+     data index 4 using 1:2 with linespoints pt 7 lw 2 title 'schur-gamg (p = 1.10)'
 set output 'block-strips-mr-peak-memory.svg'
 set ylabel 'peak resident memory (MB)'
 set title 'block-strips-mr: peak memory'
@@ -20,7 +20,7 @@ plot data index 0 using 1:3 with linespoints pt 7 lw 2 title 'fieldsplit-schur (
      data index 1 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.26)', \
      data index 2 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.03)', \
      data index 3 using 1:3 with linespoints pt 7 lw 2 title 'schur-amg (p = 0.82)', \
-     data index 4 using 1:3 with linespoints pt 7 lw 2 title 'schur-gamg (p = 0.79)'
+     data index 4 using 1:3 with linespoints pt 7 lw 2 title 'schur-gamg (p = 0.81)'
 unset logscale
 set xlabel 'mesh level'
 set xtics 1
