@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -12,6 +13,26 @@
 namespace stiction::harness {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+// The multiplier surface's matrices by name, in the order a record holds them (Surface:
+// MultiplierSurface, const or not).
+template <class Surface>
+auto surface_matrices(Surface& s) {
+  using Entry = std::pair<const char*, decltype(&s.mass)>;
+  return std::array<Entry, 5>{Entry{"mass", &s.mass}, Entry{"laplacian", &s.laplacian},
+                              Entry{"projector", &s.projector}, Entry{"constrained", &s.constrained},
+                              Entry{"slip_rows", &s.slip_rows}};
+}
+
+void load_matrix(PetscMat& mat, MPI_Comm comm, PetscViewer viewer) {
+  STICTION_PETSC(MatCreate(comm, mat.out()));
+  STICTION_PETSC(MatSetType(mat, MATAIJ));
+  STICTION_PETSC(MatLoad(mat, viewer));
+}
+
+}  // namespace
 
 void record_system(const std::string& dir, const nonlinear::NewtonSystem& sys, Vec solution,
                    const nonlinear::LinearSolveStats& stats, int step, int iteration, const RecordContext& ctx) {
@@ -39,6 +60,16 @@ void record_system(const std::string& dir, const nonlinear::NewtonSystem& sys, V
     STICTION_PETSC(MatNullSpaceGetVecs(sys.near_null_space, &has_constant, &n_null, &vecs));
     for (PetscInt i = 0; i < n_null; ++i) STICTION_PETSC(VecView(vecs[i], viewer));
   }
+  // What the Schur backends form their approximations from (the pressure mass of a mixed
+  // system, the multiplier surface of a contact system): without them a replay could not
+  // set those backends up.
+  if (sys.pressure_mass) STICTION_PETSC(MatView(sys.pressure_mass, viewer));
+  nlohmann::json surface = nlohmann::json::array();
+  for (const auto& [name, mat] : surface_matrices(sys.multiplier_surface))
+    if (*mat) {
+      STICTION_PETSC(MatView(*mat, viewer));
+      surface.push_back(name);
+    }
   STICTION_PETSC(PetscViewerDestroy(&viewer));
 
   PetscInt n;
@@ -52,6 +83,10 @@ void record_system(const std::string& dir, const nonlinear::NewtonSystem& sys, V
                       {"block_size", sys.block_size},
                       {"fields", fields},
                       {"near_null_space_vectors", n_null},
+                      {"pressure_mass", static_cast<bool>(sys.pressure_mass)},
+                      {"mixed_shear_modulus", sys.mixed_shear_modulus},
+                      {"mixed_bulk_modulus", sys.mixed_bulk_modulus},
+                      {"multiplier_surface", surface},
                       {"linear_solve",
                        {{"converged", stats.converged},
                         {"reason", stats.reason},
@@ -126,6 +161,13 @@ RecordedSystem load_system(const std::string& system_dir, MPI_Comm comm) {
       for (Vec& v : vecs) VecDestroy(&v);
       STICTION_PETSC(MatSetNearNullSpace(sys.matrix, sys.near_null_space));
     }
+    // Records made before these were kept have none of them.
+    if (meta.value("pressure_mass", false)) load_matrix(sys.pressure_mass, comm, viewer);
+    sys.mixed_shear_modulus = meta.value("mixed_shear_modulus", 0.0);
+    sys.mixed_bulk_modulus = meta.value("mixed_bulk_modulus", 0.0);
+    const auto recorded = meta.value("multiplier_surface", std::vector<std::string>{});
+    for (const auto& [name, mat] : surface_matrices(sys.multiplier_surface))
+      if (std::find(recorded.begin(), recorded.end(), name) != recorded.end()) load_matrix(*mat, comm, viewer);
     STICTION_PETSC(PetscViewerDestroy(&viewer));
   } catch (const Error& e) {
     throw Error(fmt::format("unreadable record '{}': {}", system_dir, e.what()));
