@@ -2,10 +2,12 @@
 // Record and replay of Newton systems, so backends can be compared on exactly the same
 // matrices. One folder per system (system-<step>-<iteration>/):
 //   system.petsc   PETSc binary: matrix, right side, recorded solution, one IS per field,
-//                  the near-null-space vectors (in that order)
+//                  the near-null-space vectors, then the pressure mass (mixed systems) and
+//                  the multiplier surface's matrices (contact systems), in that order
 //   metadata.json  scene, level, solver, step, iteration, unknowns, block size, field
-//                  names and sizes, number of near-null vectors, the recording solve's
-//                  statistics, PETSc version, git revision
+//                  names and sizes, number of near-null vectors, whether a pressure mass
+//                  follows and the mixed law's moduli, the multiplier surface's matrices
+//                  present, the recording solve's statistics, PETSc version, git revision
 #include <string>
 #include <vector>
 
