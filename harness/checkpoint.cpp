@@ -12,9 +12,11 @@ namespace stiction::harness {
 
 namespace {
 
-// Format 2 appends the linear-solve tally to format 1, which is still read.
-constexpr char kMagic[8] = {'S', 'T', 'I', 'C', 'K', 'P', 'T', '2'};
+// Format 2 appends the linear-solve tally to format 1, format 3 the cut-back's state to
+// format 2; the older two are still read.
+constexpr char kMagic[8] = {'S', 'T', 'I', 'C', 'K', 'P', 'T', '3'};
 constexpr char kMagicFormat1[8] = {'S', 'T', 'I', 'C', 'K', 'P', 'T', '1'};
+constexpr char kMagicFormat2[8] = {'S', 'T', 'I', 'C', 'K', 'P', 'T', '2'};
 
 class Writer {
 public:
@@ -92,6 +94,11 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
     for (const auto& s : c.state.constraints) w.doubles(s);
     w.u64(static_cast<std::uint64_t>(c.tally.solves));
     w.u64(static_cast<std::uint64_t>(c.tally.failures));
+    w.u64(static_cast<std::uint64_t>(c.cut_back.cut));
+    w.u64(static_cast<std::uint64_t>(c.cut_back.converged_at_cut));
+    w.u64(c.cut_back.probing ? 1 : 0);
+    w.u64(c.cut_back.wait.size());
+    for (int n : c.cut_back.wait) w.u64(static_cast<std::uint64_t>(n));
     if (!out) throw Error(fmt::format("cannot write checkpoint '{}'", path));
   }
   if (std::rename(tmp.c_str(), path.c_str()) != 0) throw Error(fmt::format("cannot write checkpoint '{}'", path));
@@ -103,7 +110,8 @@ Checkpoint read_checkpoint(const std::string& path) {
   char magic[sizeof kMagic];
   in.read(magic, sizeof magic);
   const bool format1 = in && std::equal(magic, magic + sizeof magic, kMagicFormat1);
-  if (!in || (!format1 && !std::equal(magic, magic + sizeof magic, kMagic)))
+  const bool format2 = in && std::equal(magic, magic + sizeof magic, kMagicFormat2);
+  if (!in || (!format1 && !format2 && !std::equal(magic, magic + sizeof magic, kMagic)))
     throw Error(fmt::format("'{}' is not a stiction checkpoint", path));
   Reader r(in, path);
   Checkpoint c;
@@ -119,6 +127,14 @@ Checkpoint read_checkpoint(const std::string& path) {
   if (!format1) {
     c.tally.solves = static_cast<int>(r.u64());
     c.tally.failures = static_cast<int>(r.u64());
+  }
+  if (!format1 && !format2) {
+    c.cut_back.cut = static_cast<int>(r.u64());
+    c.cut_back.converged_at_cut = static_cast<int>(r.u64());
+    c.cut_back.probing = r.u64() != 0;
+    const std::uint64_t sizes = r.u64();
+    if (sizes > 1000) throw Error(fmt::format("checkpoint '{}' is truncated or damaged", path));
+    for (std::uint64_t k = 0; k < sizes; ++k) c.cut_back.wait.push_back(static_cast<int>(r.u64()));
   }
   return c;
 }

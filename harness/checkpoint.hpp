@@ -16,6 +16,7 @@ struct Checkpoint {
   int level = 0;
   nonlinear::QuasiStaticSolver::State state;
   nonlinear::QuasiStaticSolver::LinearTally tally;  // zero from a checkpoint of format 1
+  nonlinear::QuasiStaticSolver::CutBack cut_back;    // none from a checkpoint of format 1 or 2
 };
 
 void write_checkpoint(const std::string& path, const Checkpoint& c);

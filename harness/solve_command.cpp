@@ -117,6 +117,7 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   if (restart) {
     newton.restore(resume.state);
     newton.set_linear_tally(resume.tally);
+    newton.set_cut_back(resume.cut_back);
   }
   const int first_step = restart ? resume.state.step + 1 : 1;
   if (!o.record_dir.empty()) {
@@ -168,7 +169,8 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
     if (iteration_table) iteration_table->add(r);
     if (record) record->add(r);  // before the checkpoint
     if (r.completes_step && writer) write_checkpoint(out_dir + "/checkpoint.bin",
-                                              {scene->name, scene->level, newton.state(), newton.linear_tally()});
+                                              {scene->name, scene->level, newton.state(), newton.linear_tally(),
+                                               newton.cut_back()});
     if (contact_table && r.completes_step) contact_table->add(r, *scene, newton.displacement(), newton.multipliers());
     if (scene->output.vtu && o.write_vtu && r.completes_step) write_step_output(r);
     if (verbose)

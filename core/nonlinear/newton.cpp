@@ -483,12 +483,15 @@ std::vector<StepResult> QuasiStaticSolver::run(const std::function<void(const St
     all.push_back(r);
     if (on_step) on_step(r);
   };
-  int cut = 0, converged_at_cut = 0;
+  // The cut-back's state lives in cut_back_, so that it outlasts this call (checkpoints).
   // wait[c]: converged parts at cut c before the size of cut c - 1 is tried again; `probing`:
   // the current size was grown back to and has not yet converged over a whole increment
   // (a part clamped to a step's end is smaller and proves nothing).
-  std::vector<int> wait(static_cast<size_t>(settings_.max_cuts) + 2, 2);
-  bool probing = false;
+  int& cut = cut_back_.cut;
+  int& converged_at_cut = cut_back_.converged_at_cut;
+  std::vector<int>& wait = cut_back_.wait;
+  wait.resize(static_cast<size_t>(settings_.max_cuts) + 2, 2);
+  bool& probing = cut_back_.probing;
   for (int k = first_step; k <= last_step; ++k) {
     const double t_end = problem_.step_times[k], full = t_end - time_;
     double increment = std::ldexp(full, -cut);  // a cut carries over into the next step

@@ -172,6 +172,18 @@ public:
   };
   const LinearTally& linear_tally() const { return tally_; }
   void set_linear_tally(const LinearTally& tally) { tally_ = tally; }
+  // The cut-back's state as run leaves it between load steps: the halvings in force (they
+  // carry over into the next step), the parts converged at that size, the parts to wait at
+  // each size before growing back (empty: 2 at every size) and whether the current size was
+  // just grown back to. A checkpoint carries it, so that a restart takes the increments the
+  // uninterrupted run would (on a frictional path other increments give another solution).
+  struct CutBack {
+    int cut = 0, converged_at_cut = 0;
+    std::vector<int> wait;
+    bool probing = false;
+  };
+  const CutBack& cut_back() const { return cut_back_; }
+  void set_cut_back(const CutBack& c) { cut_back_ = c; }
 
   const std::vector<double>& displacement() const { return u_; }
   std::vector<double>& displacement() { return u_; }
@@ -259,6 +271,7 @@ private:
   std::vector<double> u_;
   std::vector<double> lambda_;  // contact multipliers (augmented unknowns n_u..)
   LinearTally tally_;
+  CutBack cut_back_;
   double time_ = 0;             // pseudo-time of the current converged state
   double target_time_ = 0;      // pseudo-time of the increment being solved
   int completed_step_ = 0;      // the last load step completed

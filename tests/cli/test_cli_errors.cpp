@@ -198,9 +198,10 @@ TEST_F(StictionCli, RestartContinuesFromTheLastCompletedStep) {
 }
 
 // A checkpoint carries the run's tally of linear solves (a restart then retries failed
-// solves as the uninterrupted run would); one of format 1, written before the tally, still
-// reads, with a zero tally.
-TEST_F(StictionCli, CheckpointCarriesTheLinearSolveTally) {
+// solves as the uninterrupted run would) and the cut-back's state (it then takes the same
+// increments); one of format 2, written before the cut-back's state, reads with none, and
+// one of format 1, written before the tally, with a zero tally too.
+TEST_F(StictionCli, CheckpointCarriesTheLinearSolveTallyAndTheCutBack) {
   using stiction::harness::Checkpoint;
   Checkpoint c;
   c.scene = "ironing-2d";
@@ -211,11 +212,19 @@ TEST_F(StictionCli, CheckpointCarriesTheLinearSolveTally) {
   c.state.lambda = {0.25};
   c.state.constraints = {{1.0, 2.0}};
   c.tally = {1234, 5};
+  c.cut_back.cut = 2;
+  c.cut_back.converged_at_cut = 1;
+  c.cut_back.wait = {2, 2, 4, 8};
+  c.cut_back.probing = true;
   const std::string path = (dir_ / "checkpoint.bin").string();
   stiction::harness::write_checkpoint(path, c);
   const Checkpoint back = stiction::harness::read_checkpoint(path);
   EXPECT_EQ(back.tally.solves, 1234);
   EXPECT_EQ(back.tally.failures, 5);
+  EXPECT_EQ(back.cut_back.cut, 2);
+  EXPECT_EQ(back.cut_back.converged_at_cut, 1);
+  EXPECT_EQ(back.cut_back.wait, c.cut_back.wait);
+  EXPECT_TRUE(back.cut_back.probing);
   EXPECT_EQ(back.state.u, c.state.u);
   EXPECT_EQ(back.state.constraints, c.state.constraints);
 
@@ -224,18 +233,55 @@ TEST_F(StictionCli, CheckpointCarriesTheLinearSolveTally) {
     std::ifstream in(path, std::ios::binary);
     bytes.assign(std::istreambuf_iterator<char>(in), {});
   }
-  ASSERT_EQ(bytes[7], '2');
-  bytes[7] = '1';
-  bytes.resize(bytes.size() - 16);  // the two tally counts
-  {
+  auto rewrite = [&](char format, size_t trailing_bytes) {
+    bytes[7] = format;
+    bytes.resize(bytes.size() - trailing_bytes);
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     out << bytes;
-  }
+  };
+  ASSERT_EQ(bytes[7], '3');
+  rewrite('2', 8 * (4 + c.cut_back.wait.size()));  // the cut-back's counts, flag and waits
+  const Checkpoint format2 = stiction::harness::read_checkpoint(path);
+  EXPECT_EQ(format2.tally.solves, 1234);
+  EXPECT_EQ(format2.cut_back.cut, 0);
+  EXPECT_TRUE(format2.cut_back.wait.empty());
+  EXPECT_EQ(format2.state.u, c.state.u);
+  rewrite('1', 16);  // the two tally counts
   const Checkpoint old = stiction::harness::read_checkpoint(path);
   EXPECT_EQ(old.tally.solves, 0);
   EXPECT_EQ(old.tally.failures, 0);
   EXPECT_EQ(old.state.u, c.state.u);
   EXPECT_EQ(old.state.time, 1.25);
+}
+
+// A run whose steps are cut carries the reduced increment into the next load step; restarted
+// from the checkpoint after load step 1, it takes the same increments as the uninterrupted
+// run (cantilever-2d with at most 3 Newton iterations: load step 1 ends in sixteenths of a
+// step, and step 2 starts in them).
+TEST_F(StictionCli, RestartTakesTheIncrementsOfTheUninterruptedRun) {
+  const std::vector<std::string> cut = {"--no-vtu", "--set", "newton.max_iterations=3"};
+  auto with = [&](std::vector<std::string> args) {
+    args.insert(args.end(), cut.begin(), cut.end());
+    return args;
+  };
+  const fs::path whole_dir = dir_ / "whole";
+  std::vector<std::string> whole_args = with({"solve", "cantilever-2d", "--quiet", "--out", whole_dir.string()});
+  const CliRun whole = CliRun::of(whole_args, dir_);
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  const CliRun first = solve("cantilever-2d", with({"--until", "0.25"}));
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  const CliRun rest = solve("cantilever-2d", with({"--restart", (dir_ / "out").string()}));
+  ASSERT_EQ(rest.exit_code, 0) << rest.err;
+  auto increments_after_step_1 = [](const fs::path& file) {
+    std::vector<std::string> rows;
+    for (const auto& row : stiction::harness::read_csv(file.string()).rows)
+      if (row.at("step") != "1") rows.push_back(row.at("time") + " cut " + row.at("cut") + " " + row.at("reason"));
+    return rows;
+  };
+  const auto straight = increments_after_step_1(whole_dir / "steps.csv");
+  ASSERT_FALSE(straight.empty());
+  EXPECT_NE(straight.front().find(" cut 4 "), std::string::npos) << "step 2 starts in the sixteenths step 1 ended in";
+  EXPECT_EQ(increments_after_step_1(dir_ / "out" / "steps.csv"), straight);
 }
 
 // With contact, a restart follows the uninterrupted run's Newton path: the same residual at
