@@ -682,43 +682,41 @@ TEST_F(StictionCli, BenchRowsNameTheMumpsOrderingAndResumeAnOlderSweep) {
   EXPECT_EQ(table.rows[0].at("newton_rtol"), "1e-06");
   EXPECT_EQ(table.rows[0].at("newton_forcing"), "fixed");
 
-  // The same table as an older version wrote it: without the mumps_ordering column.
-  std::string old_header, old_row;
-  for (const auto& c : table.columns)
-    if (c != "mumps_ordering") {
-      old_header += (old_header.empty() ? "" : ",") + c;
-      old_row += (old_row.empty() ? "" : ",") + table.rows[0].at(c);
-    }
+  // A table as an older version wrote it: `table` without `column`, first row only; returns
+  // its header.
+  auto write_without = [&](const stiction::harness::CsvTable& t, const std::string& column, const fs::path& path) {
+    std::string header, row;
+    for (const auto& c : t.columns)
+      if (c != column) {
+        header += (header.empty() ? "" : ",") + c;
+        row += (row.empty() ? "" : ",") + t.rows[0].at(c);
+      }
+    std::ofstream(path) << "# an older sweep\n" << header << "\n" << row << "\n";
+    return header;
+  };
+  // The resumed sweep's table at `path` has `t`'s columns again, `column` empty in its one
+  // row and every other value kept.
+  auto expect_upgraded = [&](const fs::path& path, const stiction::harness::CsvTable& t, const std::string& column) {
+    const auto upgraded = stiction::harness::read_csv(path.string());
+    EXPECT_EQ(upgraded.columns, t.columns) << path;
+    ASSERT_EQ(upgraded.rows.size(), 1u) << path;
+    EXPECT_EQ(upgraded.rows[0].at(column), "") << path;
+    for (const auto& c : t.columns)
+      if (c != column) {
+        EXPECT_EQ(upgraded.rows[0].at(c), t.rows[0].at(c)) << path << ": " << c;
+      }
+  };
+  // The same sweep as an older version wrote it: runs.csv without the mumps_ordering column,
+  // steps.csv without the processes column.
   fs::create_directories(dir_ / "old");
-  std::ofstream(dir_ / "old" / "runs.csv") << "# an older sweep\n" << old_header << "\n" << old_row << "\n";
-  // Its steps.csv as that version wrote it too: without the processes column.
+  const std::string old_header = write_without(table, "mumps_ordering", dir_ / "old" / "runs.csv");
   const auto steps = stiction::harness::read_csv((dir_ / "sweep" / "steps.csv").string());
   ASSERT_FALSE(steps.rows.empty());
-  std::string old_steps_header, old_step;
-  for (const auto& c : steps.columns)
-    if (c != "processes") {
-      old_steps_header += (old_steps_header.empty() ? "" : ",") + c;
-      old_step += (old_step.empty() ? "" : ",") + steps.rows[0].at(c);
-    }
-  std::ofstream(dir_ / "old" / "steps.csv") << "# an older sweep\n" << old_steps_header << "\n" << old_step << "\n";
+  write_without(steps, "processes", dir_ / "old" / "steps.csv");
   const CliRun resumed = with_out("old", true);
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
-  const auto upgraded = stiction::harness::read_csv((dir_ / "old" / "runs.csv").string());
-  EXPECT_EQ(upgraded.columns, table.columns);
-  ASSERT_EQ(upgraded.rows.size(), 1u) << "the finished run was not run again";
-  EXPECT_EQ(upgraded.rows[0].at("mumps_ordering"), "");
-  for (const auto& c : table.columns)
-    if (c != "mumps_ordering") {
-      EXPECT_EQ(upgraded.rows[0].at(c), table.rows[0].at(c)) << c;
-    }
-  const auto upgraded_steps = stiction::harness::read_csv((dir_ / "old" / "steps.csv").string());
-  EXPECT_EQ(upgraded_steps.columns, steps.columns) << "the lines a resumed sweep appends match the header";
-  ASSERT_EQ(upgraded_steps.rows.size(), 1u);
-  EXPECT_EQ(upgraded_steps.rows[0].at("processes"), "");
-  for (const auto& c : steps.columns)
-    if (c != "processes") {
-      EXPECT_EQ(upgraded_steps.rows[0].at(c), steps.rows[0].at(c)) << c;
-    }
+  expect_upgraded(dir_ / "old" / "runs.csv", table, "mumps_ordering");  // the finished run was not run again
+  expect_upgraded(dir_ / "old" / "steps.csv", steps, "processes");  // the lines a resumed sweep appends match
 
   fs::create_directories(dir_ / "other");
   std::ofstream(dir_ / "other" / "runs.csv") << old_header << ",a_column_from_elsewhere\n";
