@@ -136,6 +136,9 @@ int main(int argc, char** argv) {
   replay_cmd->add_option("record", replay.record_dir, "folder written by `stiction solve --record`")->required();
   replay_cmd->add_option("--solver", replay.solver, "linear-solver backend (see `stiction solvers`)");
   replay_cmd->add_option("--csv", replay.csv_path, "also write the table as CSV");
+  replay_cmd->add_option("--krylov-rtol", replay.krylov_rtol,
+                         "relative tolerance of each Krylov solve: 'recorded' (default: the recording solve's, unless "
+                         "-<backend>_ksp_rtol is given), 'backend' (the backend's own) or a number");
   bool schema = false;
   auto* scenes_cmd = app.add_subcommand("scenes", "list the built-in scenes");
   scenes_cmd->add_flag("--schema", schema, "print every key a scene file accepts");

@@ -11,8 +11,51 @@
 
 namespace stiction::harness {
 
+ReplayedSolve replay_system(const RecordedSystem& r, nonlinear::LinearSolver& solver, double krylov_rtol) {
+  ReplayedSolve out;
+  out.krylov_rtol = krylov_rtol;
+  PetscVec x, diff;
+  STICTION_PETSC(VecDuplicate(r.system.rhs, x.out()));
+  STICTION_PETSC(VecZeroEntries(x));
+  solver.setup(r.system);
+  if (krylov_rtol > 0) solver.set_relative_tolerance(krylov_rtol);  // after set-up, as the Newton driver
+  out.stats = solver.solve(r.system, x);
+  STICTION_PETSC(VecDuplicate(x, diff.out()));
+  STICTION_PETSC(VecWAXPY(diff, -1.0, r.solution, x));
+  PetscReal dn, rn;
+  STICTION_PETSC(VecNorm(diff, NORM_2, &dn));
+  STICTION_PETSC(VecNorm(r.solution, NORM_2, &rn));
+  out.relative_difference = rn > 0 ? dn / rn : dn;
+  return out;
+}
+
+bool krylov_rtol_given(const std::string& solver) {
+  std::string prefix = solver;
+  std::replace(prefix.begin(), prefix.end(), '-', '_');
+  PetscBool given = PETSC_FALSE;
+  STICTION_PETSC(PetscOptionsHasName(nullptr, nullptr, ("-" + prefix + "_ksp_rtol").c_str(), &given));
+  return given;
+}
+
+double replay_krylov_rtol(const std::string& choice, const RecordedSystem& r, bool rtol_given) {
+  if (choice == "backend") return 0;
+  if (choice == "recorded") return rtol_given ? 0 : r.krylov_rtol;
+  size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(choice, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != choice.size() || !(value > 0 && value < 1))
+    throw Error(fmt::format("--krylov-rtol '{}': expected 'recorded', 'backend' or a number in (0, 1)", choice));
+  return value;
+}
+
 double run_replay(const ReplayOptions& o, const RunInfo& info) {
   const auto dirs = recorded_system_dirs(o.record_dir);
+  replay_krylov_rtol(o.krylov_rtol, RecordedSystem{}, false);  // a bad choice ends the run before any solve
+  const bool rtol_given = krylov_rtol_given(o.solver);
   auto solver = solvers::create_solver(o.solver, PETSC_COMM_WORLD);
   std::ofstream csv;
   if (!o.csv_path.empty()) {
@@ -20,34 +63,29 @@ double run_replay(const ReplayOptions& o, const RunInfo& info) {
     if (!csv) throw Error(fmt::format("cannot write '{}'", o.csv_path));
     csv << format_run_info(info, "# ") << "# solver: " << o.solver << "\n"
         << "system,unknowns,converged,reason,krylov_iterations,initial_residual,final_residual,setup_seconds,"
-           "solve_seconds,relative_difference_to_record\n";
+           "solve_seconds,relative_difference_to_record,krylov_rtol\n";
   }
   fmt::print("{:<44} {:>9} {:>6} {:>9} {:>9} {:>10} {:>10} {:>9}  {}\n", "system", "unknowns", "its", "setup s",
-             "solve s", "residual", "rel.diff", "", "reason");
+             "solve s", "residual", "rel.diff", "rtol", "reason");
   double worst = 0;
   for (const auto& dir : dirs) {
     RecordedSystem r = load_system(dir, PETSC_COMM_WORLD);
-    PetscVec x, diff;
-    STICTION_PETSC(VecDuplicate(r.system.rhs, x.out()));
-    STICTION_PETSC(VecZeroEntries(x));
-    solver->setup(r.system);
-    const auto stats = solver->solve(r.system, x);
-    STICTION_PETSC(VecDuplicate(x, diff.out()));
-    STICTION_PETSC(VecWAXPY(diff, -1.0, r.solution, x));
-    PetscReal dn, rn;
-    STICTION_PETSC(VecNorm(diff, NORM_2, &dn));
-    STICTION_PETSC(VecNorm(r.solution, NORM_2, &rn));
-    const double rel = rn > 0 ? dn / rn : dn;
+    const ReplayedSolve replayed = replay_system(r, *solver, replay_krylov_rtol(o.krylov_rtol, r, rtol_given));
+    const auto& stats = replayed.stats;
+    const double rel = replayed.relative_difference;
     worst = std::max(worst, rel);
     PetscInt n;
     STICTION_PETSC(MatGetSize(r.system.matrix, &n, nullptr));
+    // The tolerance the solve ran to ("backend": the backend's own -ksp_rtol).
+    const std::string rtol = replayed.krylov_rtol > 0 ? fmt::format("{:.0e}", replayed.krylov_rtol) : "backend";
     fmt::print("{:<44} {:>9} {:>6} {:>9.3f} {:>9.3f} {:>10.3e} {:>10.3e} {:>9}  {}\n", r.description, n,
-               stats.iterations, stats.setup_seconds, stats.solve_seconds, stats.final_residual, rel, "",
+               stats.iterations, stats.setup_seconds, stats.solve_seconds, stats.final_residual, rel, rtol,
                stats.reason);
     if (csv.is_open()) {
-      csv << fmt::format("{},{},{},{},{},{:.6e},{:.6e},{:.4f},{:.4f},{:.6e}\n", r.description, n, stats.converged ? 1 : 0,
-                         stats.reason, stats.iterations, stats.initial_residual, stats.final_residual,
-                         stats.setup_seconds, stats.solve_seconds, rel);
+      csv << fmt::format("{},{},{},{},{},{:.6e},{:.6e},{:.4f},{:.4f},{:.6e},{}\n", r.description, n,
+                         stats.converged ? 1 : 0, stats.reason, stats.iterations, stats.initial_residual,
+                         stats.final_residual, stats.setup_seconds, stats.solve_seconds, rel,
+                         replayed.krylov_rtol > 0 ? fmt::format("{:g}", replayed.krylov_rtol) : "");
       csv.flush();
     }
   }

@@ -3,7 +3,9 @@
 // report the same statistics as a live run, plus the difference to the recorded solution.
 #include <string>
 
+#include "nonlinear/linear_solver.hpp"
 #include "run_info.hpp"
+#include "system_record.hpp"
 
 namespace stiction::harness {
 
@@ -11,7 +13,26 @@ struct ReplayOptions {
   std::string record_dir;
   std::string solver = "lu-mumps";
   std::string csv_path;  // optional CSV of the table
+  // Relative tolerance of each Krylov solve: "recorded" (the recording solve's, so that the
+  // counts compare; the backend's own -ksp_rtol for a record of a direct solve, or when the
+  // command line gives -<backend>_ksp_rtol), "backend" (the backend's own), or a number.
+  std::string krylov_rtol = "recorded";
 };
+
+// One recorded system solved again: the solve's statistics, the relative tolerance it ran
+// to (0: the backend's own) and its relative difference to the recorded solution.
+struct ReplayedSolve {
+  nonlinear::LinearSolveStats stats;
+  double krylov_rtol = 0;
+  double relative_difference = 0;
+};
+ReplayedSolve replay_system(const RecordedSystem& record, nonlinear::LinearSolver& solver, double krylov_rtol);
+// Whether the options database names -<solver>_ksp_rtol: asked before the backend is
+// created, since the backend inserts its own defaults there.
+bool krylov_rtol_given(const std::string& solver);
+// The tolerance a system is replayed to under ReplayOptions::krylov_rtol (0: the backend's
+// own); throws on a choice that is neither a name nor a number in (0, 1).
+double replay_krylov_rtol(const std::string& choice, const RecordedSystem& record, bool rtol_given);
 
 // Returns the largest relative difference to the recorded solutions.
 double run_replay(const ReplayOptions& options, const RunInfo& info);

@@ -7,7 +7,8 @@
 //   metadata.json  scene, level, solver, step, iteration, unknowns, block size, field
 //                  names and sizes, number of near-null vectors, whether a pressure mass
 //                  follows and the mixed law's moduli, the multiplier surface's matrices
-//                  present, the recording solve's statistics, PETSc version, git revision
+//                  present, the recording solve's statistics (with its Krylov tolerance when
+//                  it was a Krylov solve), PETSc version, git revision
 #include <string>
 #include <vector>
 
@@ -32,6 +33,7 @@ struct RecordedSystem {
   std::string description; // scene, level, step, iteration
   nonlinear::NewtonSystem system;
   PetscVec solution;       // recorded solution
+  double krylov_rtol = 0;  // relative tolerance of the recording Krylov solve (0: a direct solve, or not recorded)
 };
 
 // The systems under `dir`, in (step, iteration) order; throws on a missing or unreadable record.

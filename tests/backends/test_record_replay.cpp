@@ -1,6 +1,6 @@
 // Record/replay: a recorded Newton system replays to its recorded solution with the
-// recording backend (round-off) and with another backend (Krylov tolerance); a damaged
-// record is a clear error.
+// recording backend (round-off) and with another backend (Krylov tolerance), to the
+// recording solve's Krylov tolerance; a damaged record is a clear error.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -10,6 +10,7 @@
 #include "common/error.hpp"
 #include "nonlinear/newton.hpp"
 #include "registry.hpp"
+#include "replay_command.hpp"
 #include "system_record.hpp"
 
 namespace stiction::harness {
@@ -23,15 +24,18 @@ fs::path fresh_dir(const std::string& name) {
   return dir;
 }
 
-// Records the Newton systems of a scene's first load step at level 0, solved by `backend`;
-// returns the record's folder and the Krylov iterations of each recorded solve.
+// Records the Newton systems of a scene's first load step at level 0, solved by `backend`
+// (to krylov_rtol when given); returns the record's folder and the Krylov iterations of
+// each recorded solve.
 struct Recording {
   fs::path dir;
   std::vector<int> krylov_iterations;
 };
-Recording record_first_step(const std::string& scene_name, const std::string& backend, const std::string& name) {
+Recording record_first_step(const std::string& scene_name, const std::string& backend, const std::string& name,
+                            double krylov_rtol = 0) {
   Recording rec{fresh_dir(name), {}};
   auto scene = open_scene(scene_name, 0);
+  if (krylov_rtol > 0) scene->newton.krylov_rtol = krylov_rtol;
   auto solver = solvers::create_solver(backend, PETSC_COMM_WORLD);
   nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, scene->problem, scene->newton, *solver);
   const RecordContext ctx{scene_name, 0, backend, RunInfo{}};
@@ -46,20 +50,18 @@ Recording record_first_step(const std::string& scene_name, const std::string& ba
 
 fs::path record_cantilever(const std::string& name) { return record_first_step("cantilever-2d", "lu-mumps", name).dir; }
 
-double replay_difference(const std::string& system_dir, const std::string& backend) {
+// The recorded system solved again by `backend`, to the tolerance `choice` gives
+// (ReplayOptions::krylov_rtol).
+ReplayedSolve replay(const std::string& system_dir, const std::string& backend, const std::string& choice = "backend") {
   RecordedSystem r = load_system(system_dir, PETSC_COMM_WORLD);
   auto solver = solvers::create_solver(backend, PETSC_COMM_WORLD);
-  Vec x;
-  VecDuplicate(r.system.rhs, &x);
-  VecZeroEntries(x);
-  solver->setup(r.system);
-  EXPECT_TRUE(solver->solve(r.system, x).converged);
-  VecAXPY(x, -1.0, r.solution);
-  PetscReal d, n;
-  VecNorm(x, NORM_2, &d);
-  VecNorm(r.solution, NORM_2, &n);
-  VecDestroy(&x);
-  return d / n;
+  ReplayedSolve out = replay_system(r, *solver, replay_krylov_rtol(choice, r, false));
+  EXPECT_TRUE(out.stats.converged) << out.stats.reason;
+  return out;
+}
+
+double replay_difference(const std::string& system_dir, const std::string& backend) {
+  return replay(system_dir, backend).relative_difference;
 }
 
 TEST(RecordReplay, ReproducesTheRecordedSolution) {
@@ -98,15 +100,33 @@ TEST(RecordReplay, SchurBackendsReplayContactAndMixedSystems) {
       EXPECT_GT(r.system.mixed_shear_modulus, 0);
       EXPECT_GT(r.system.mixed_bulk_modulus, 0);
     }
-    auto solver = solvers::create_solver("schur-amg", PETSC_COMM_WORLD);
-    PetscVec x;
-    VecDuplicate(r.system.rhs, x.out());
-    VecZeroEntries(x);
-    solver->setup(r.system);
-    const nonlinear::LinearSolveStats st = solver->solve(r.system, x);
-    EXPECT_TRUE(st.converged);
-    EXPECT_EQ(st.iterations, rec.krylov_iterations[0]);
+    EXPECT_EQ(replay(systems[0], "schur-amg").stats.iterations, rec.krylov_iterations[0]);
   }
+}
+
+// A record keeps the Krylov tolerance its solve ran to (here the scene's, 1e-8, tighter
+// than the backend's own 1e-4), and a replay solves to it unless told otherwise: the counts
+// then compare with the recording solve's.
+TEST(RecordReplay, ReplaysToTheRecordedKrylovTolerance) {
+  const Recording rec = record_first_step("contact-patch-2d", "schur-amg", "record-rtol", 1e-8);
+  const auto systems = recorded_system_dirs(rec.dir.string());
+  ASSERT_EQ(systems.size(), rec.krylov_iterations.size());
+  EXPECT_DOUBLE_EQ(load_system(systems[0], PETSC_COMM_WORLD).krylov_rtol, 1e-8);
+  const ReplayedSolve recorded = replay(systems[0], "schur-amg", "recorded");
+  EXPECT_DOUBLE_EQ(recorded.krylov_rtol, 1e-8);
+  EXPECT_EQ(recorded.stats.iterations, rec.krylov_iterations[0]);
+  const ReplayedSolve own = replay(systems[0], "schur-amg", "backend");
+  EXPECT_EQ(own.krylov_rtol, 0);
+  EXPECT_LT(own.stats.iterations, recorded.stats.iterations);
+  EXPECT_EQ(replay(systems[0], "schur-amg", "1e-6").krylov_rtol, 1e-6);
+  // A tolerance on the command line (-schur_amg_ksp_rtol) wins over the recorded one (the
+  // command line itself: StictionCli.RecordThenReplayWithAnotherBackend).
+  const RecordedSystem r = load_system(systems[0], PETSC_COMM_WORLD);
+  EXPECT_EQ(replay_krylov_rtol("recorded", r, true), 0);
+  for (const std::string bad : {"tight", "0", "2", "1e-6x"}) EXPECT_THROW(replay_krylov_rtol(bad, r, false), Error);
+  // A direct solve records none: its replay runs to the backend's own tolerance.
+  const Recording direct = record_first_step("contact-patch-2d", "lu-mumps", "record-rtol-direct");
+  EXPECT_EQ(replay(recorded_system_dirs(direct.dir.string())[0], "schur-amg", "recorded").krylov_rtol, 0);
 }
 
 TEST(RecordReplay, DamagedRecordIsAClearError) {

@@ -440,14 +440,36 @@ TEST_F(StictionCli, UnreadableRecordIsAnError) {
   expect_error(CliRun::of({"replay", (dir_ / "record").string()}, dir_), 2, {"unreadable record", "metadata.json"});
 }
 
+// A replay solves to the recorded Krylov tolerance (the CSV's krylov_rtol), unless the
+// command line names the backend's own; a tolerance that is not one is an input error.
 TEST_F(StictionCli, RecordThenReplayWithAnotherBackend) {
-  const CliRun rec = solve("cantilever-2d", {"--record", (dir_ / "rec").string(), "--no-vtu"});
+  const CliRun rec = solve("cantilever-2d", {"--record", (dir_ / "rec").string(), "--no-vtu", "--solver", "schur-amg",
+                                             "--set", "newton.krylov_rtol=1e-7"});
   ASSERT_EQ(rec.exit_code, 0) << rec.err;
   EXPECT_FALSE(fs::exists(dir_ / "out" / "step-001.vtu"));
-  const CliRun rep = CliRun::of({"replay", (dir_ / "rec").string(), "--solver", "schur-lu", "--csv",
-                                 (dir_ / "replay.csv").string()}, dir_);
+  const auto replay = [&](const std::string& csv, std::vector<std::string> extra) {
+    std::vector<std::string> args{"replay", (dir_ / "rec").string(), "--solver", "schur-lu", "--csv",
+                                  (dir_ / csv).string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return CliRun::of(args, dir_);
+  };
+  const auto rtol_column = [&](const std::string& csv) {
+    std::vector<std::string> values;
+    std::ifstream in(dir_ / csv);
+    for (std::string line; std::getline(in, line);)
+      if (!line.empty() && line[0] != '#' && line.rfind("system,", 0) != 0)
+        values.push_back(line.substr(line.rfind(',') + 1));
+    return values;
+  };
+  const CliRun rep = replay("replay.csv", {});
   EXPECT_EQ(rep.exit_code, 0) << rep.err;
-  EXPECT_TRUE(fs::exists(dir_ / "replay.csv"));
+  const auto recorded = rtol_column("replay.csv");
+  ASSERT_GE(recorded.size(), 2u);
+  for (const auto& v : recorded) EXPECT_EQ(v, "1e-07");
+  const CliRun own = replay("own.csv", {"-schur_lu_ksp_rtol", "1e-3"});
+  EXPECT_EQ(own.exit_code, 0) << own.err;
+  EXPECT_EQ(rtol_column("own.csv"), std::vector<std::string>(recorded.size(), ""));
+  expect_error(replay("bad.csv", {"--krylov-rtol", "tight"}), 2, {"--krylov-rtol 'tight'"});
 }
 
 // The git revision in a run's header is the one the binary was built from, known without
