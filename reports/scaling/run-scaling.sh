@@ -15,3 +15,8 @@ run --scenes mooney-rivlin-block --solvers schur-amg --levels 2 --ranks 1,2 --ti
 # block-strips level 2, its first load step only (t = 1: 2 Newton iterations), one and two processes:
 #   /usr/bin/time -v [mpirun -n 2] $B solve block-strips --level 2 --until 1 --solver schur-amg --no-vtu \
 #     --metrics m.toml --out <dir> -schur_amg_ksp_gmres_restart 50      -> block-strips-L2-first-step/np{1,2}/
+# 2026-12-04, binary of 9fdd243's code, free machine (both ironing runs stopped with SIGSTOP):
+run --scenes block-strips --solvers schur-amg --levels 2 --ranks 2 --time-limit 6000 --out reports/scaling/block-strips-L2 -schur_amg_ksp_gmres_restart 50
+python3 scripts/merge-sweep-runs.py reports/paper-tables reports/scaling/block-strips-L2 block-strips-L2-schur-amg
+$B report reports/scaling/block-strips-L2
+run --scenes block-strips --solvers schur-amg --levels 1 --ranks 1,2 --time-limit 2400 --out reports/scaling/block-strips-L1
