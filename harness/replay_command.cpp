@@ -37,9 +37,9 @@ bool krylov_rtol_given(const std::string& solver) {
   return given;
 }
 
-double replay_krylov_rtol(const std::string& choice, const RecordedSystem& r, bool rtol_given) {
+double replay_krylov_rtol(const std::string& choice, double recorded, bool rtol_given) {
   if (choice == "backend") return 0;
-  if (choice == "recorded") return rtol_given ? 0 : r.krylov_rtol;
+  if (choice == "recorded") return rtol_given ? 0 : recorded;
   size_t used = 0;
   double value = 0;
   try {
@@ -54,7 +54,7 @@ double replay_krylov_rtol(const std::string& choice, const RecordedSystem& r, bo
 
 double run_replay(const ReplayOptions& o, const RunInfo& info) {
   const auto dirs = recorded_system_dirs(o.record_dir);
-  replay_krylov_rtol(o.krylov_rtol, RecordedSystem{}, false);  // a bad choice ends the run before any solve
+  replay_krylov_rtol(o.krylov_rtol, 0, false);  // a bad choice ends the run before any solve
   const bool rtol_given = krylov_rtol_given(o.solver);
   auto solver = solvers::create_solver(o.solver, PETSC_COMM_WORLD);
   std::ofstream csv;
@@ -70,7 +70,7 @@ double run_replay(const ReplayOptions& o, const RunInfo& info) {
   double worst = 0;
   for (const auto& dir : dirs) {
     RecordedSystem r = load_system(dir, PETSC_COMM_WORLD);
-    const ReplayedSolve replayed = replay_system(r, *solver, replay_krylov_rtol(o.krylov_rtol, r, rtol_given));
+    const ReplayedSolve replayed = replay_system(r, *solver, replay_krylov_rtol(o.krylov_rtol, r.krylov_rtol, rtol_given));
     const auto& stats = replayed.stats;
     const double rel = replayed.relative_difference;
     worst = std::max(worst, rel);

@@ -30,9 +30,10 @@ ReplayedSolve replay_system(const RecordedSystem& record, nonlinear::LinearSolve
 // Whether the options database names -<solver>_ksp_rtol: asked before the backend is
 // created, since the backend inserts its own defaults there.
 bool krylov_rtol_given(const std::string& solver);
-// The tolerance a system is replayed to under ReplayOptions::krylov_rtol (0: the backend's
-// own); throws on a choice that is neither a name nor a number in (0, 1).
-double replay_krylov_rtol(const std::string& choice, const RecordedSystem& record, bool rtol_given);
+// The tolerance a system recorded at `recorded` (RecordedSystem::krylov_rtol) is replayed to
+// under ReplayOptions::krylov_rtol (0: the backend's own); throws on a choice that is
+// neither a name nor a number in (0, 1).
+double replay_krylov_rtol(const std::string& choice, double recorded, bool rtol_given);
 
 // Returns the largest relative difference to the recorded solutions.
 double run_replay(const ReplayOptions& options, const RunInfo& info);
