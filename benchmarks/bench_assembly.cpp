@@ -46,7 +46,7 @@ void BM_ResidualAndTangent(benchmark::State& state) {
   for (auto _ : state) {
     std::fill(r.begin(), r.end(), 0.0);
     K.begin_assembly();
-    fem::assemble_internal(space, s.problem.cell_material, u, &r, &K);
+    fem::assemble_internal(space, s.problem.cell_material, u, r, &K);
     K.end_assembly();
     benchmark::DoNotOptimize(r.data());
   }
@@ -68,7 +68,7 @@ void BM_ResidualOnly(benchmark::State& state) {
   std::vector<double> r(space.n_dofs());
   for (auto _ : state) {
     std::fill(r.begin(), r.end(), 0.0);
-    fem::assemble_internal(space, s.problem.cell_material, u, &r, nullptr);
+    fem::assemble_internal(space, s.problem.cell_material, u, r, nullptr);
     benchmark::DoNotOptimize(r.data());
   }
   state.counters["unknowns"] = space.n_dofs();
@@ -82,7 +82,7 @@ void BM_MatMult(benchmark::State& state) {
   const auto& space = *s.space;
   fem::StiffnessMatrix K(PETSC_COMM_WORLD, space);
   K.begin_assembly();
-  fem::assemble_internal(space, s.problem.cell_material, compressed_state(space), nullptr, &K);
+  fem::assemble_internal(space, s.problem.cell_material, compressed_state(space), {}, &K);
   K.end_assembly();
   Mat A = K.mat();
   PetscVec x, y;

@@ -42,6 +42,7 @@ ContactPair::ContactPair(std::string name, const fem::FieldSpace& space, int sla
   r_t_.resize(slave_.n_nodes());
   for (int i = 0; i < slave_.n_nodes(); ++i) r_t_[i] = initial_r_t(i);
   u_previous_.assign(space.n_dofs(), 0.0);
+  u_previous_n_app_ = u_previous_.size();
 }
 
 // The adaptive r_t (Sec. 4.4) starts every increment from its initial value, with no
@@ -50,8 +51,10 @@ ContactPair::ContactPair(std::string name, const fem::FieldSpace& space, int sla
 // level 0: by t = 1.045, after 9 sliding steps, r_t ranged over 1e-17 .. 1.6e5 times its
 // initial value among the slipping nodes, and the sliding steps stalled (25 iterations,
 // then down to 1/64 of a step, DIVERGED_MAX_ITERATIONS at t = 1.057).
-void ContactPair::begin_increment(double t_start, const std::vector<double>& u) {
-  u_previous_ = u;
+void ContactPair::begin_increment(double t_start, fem::StateView u) {
+  u_previous_.assign(u.storage().begin(), u.storage().end());
+  u_previous_map_ = u.storage_map();
+  u_previous_n_app_ = u.size();
   last_evaluated_.valid = false;  // the slip increments S_i are relative to u_previous_
   t_previous_ = t_start;
   for (int i = 0; i < slave_.n_nodes(); ++i) r_t_[i] = initial_r_t(i);
@@ -83,24 +86,24 @@ void ContactPair::restore_state(const std::vector<double>& saved) {
   settled_ = false;
 }
 
-void ContactPair::evaluate(double t, const std::vector<double>& u, const double* lambda, std::vector<double>& r_u,
+void ContactPair::evaluate(double t, fem::StateView u, const double* lambda, fem::ResidualView r_u,
                            double* r_c, nonlinear::SparseEntries* jacobian, PetscInt offset) const {
   if (jacobian) {
     std::vector<NodeKinematics> nodes;
-    kinematics_everywhere(t, u, lambda, &r_u, jacobian, offset, true, nodes);
+    kinematics_everywhere(t, u, lambda, r_u, jacobian, offset, true, nodes);
     write_rows(t, nodes, lambda, r_c, jacobian, offset);
     return;
   }
-  evaluate_kinematics(t, u, lambda, &r_u, offset);
+  evaluate_kinematics(t, u, lambda, r_u, offset);
   write_rows(t, last_evaluated_.nodes, lambda, r_c, nullptr, offset);
 }
 
-void ContactPair::evaluate_kinematics(double t, const std::vector<double>& u, const double* lambda,
-                                      std::vector<double>* r_u, PetscInt offset) const {
+void ContactPair::evaluate_kinematics(double t, fem::StateView u, const double* lambda,
+                                      fem::ResidualView r_u, PetscInt offset) const {
   last_evaluated_.valid = false;
   kinematics_everywhere(t, u, lambda, r_u, nullptr, offset, false, last_evaluated_.nodes);
   last_evaluated_.t = t;
-  last_evaluated_.u = u;
+  last_evaluated_.u.assign(u.storage().begin(), u.storage().end());
   last_evaluated_.valid = true;
 }
 
@@ -116,8 +119,8 @@ void ContactPair::distribute(MPI_Comm comm, const std::vector<char>& owned) {
 // forces (compute_kinematics). The forces are summed like the elastic residual
 // (fem::sum_over_ranks: the same bits on every process); a node's values come from its
 // owner alone, so the sum copies them exactly.
-void ContactPair::kinematics_everywhere(double t, const std::vector<double>& u, const double* lambda,
-                                        std::vector<double>* r_u, nonlinear::SparseEntries* jacobian,
+void ContactPair::kinematics_everywhere(double t, fem::StateView u, const double* lambda,
+                                        fem::ResidualView r_u, nonlinear::SparseEntries* jacobian,
                                         PetscInt offset, bool with_derivatives,
                                         std::vector<NodeKinematics>& nodes) const {
   if (!distributed()) {
@@ -125,11 +128,12 @@ void ContactPair::kinematics_everywhere(double t, const std::vector<double>& u, 
     return;
   }
   std::vector<double> forces;
-  if (r_u) forces.assign(r_u->size(), 0.0);
-  compute_kinematics(t, u, lambda, r_u ? &forces : nullptr, jacobian, offset, with_derivatives, nodes);
+  if (r_u) forces.assign(r_u.size(), 0.0);
+  compute_kinematics(t, u, lambda, r_u ? fem::ResidualView(forces) : fem::ResidualView(), jacobian, offset,
+                     with_derivatives, nodes);
   if (r_u) {
     fem::sum_over_ranks(comm_, forces);
-    for (size_t k = 0; k < forces.size(); ++k) (*r_u)[k] += forces[k];
+    for (size_t k = 0; k < forces.size(); ++k) r_u[k] += forces[k];
   }
   constexpr int kValues = 10;  // n, G, S, admissible
   std::vector<double> values(nodes.size() * kValues, 0.0);
@@ -148,10 +152,10 @@ void ContactPair::kinematics_everywhere(double t, const std::vector<double>& u, 
   }
 }
 
-void ContactPair::local_kinematics(double t, const std::vector<double>& u, std::vector<NodeKinematics>& nodes) const {
+void ContactPair::local_kinematics(double t, fem::StateView u, std::vector<NodeKinematics>& nodes) const {
   whole_ = true;
   try {
-    compute_kinematics(t, u, nullptr, nullptr, nullptr, 0, false, nodes);
+    compute_kinematics(t, u, nullptr, {}, nullptr, 0, false, nodes);
   } catch (...) {
     whole_ = false;
     throw;
@@ -159,12 +163,12 @@ void ContactPair::local_kinematics(double t, const std::vector<double>& u, std::
   whole_ = false;
 }
 
-void ContactPair::evaluate_rows(double t, const std::vector<double>& u, const double* lambda, double* r_c) const {
+void ContactPair::evaluate_rows(double t, fem::StateView u, const double* lambda, double* r_c) const {
   write_rows(t, kinematics_at(t, u), lambda, r_c, nullptr, 0);
 }
 
-const std::vector<NodeKinematics>& ContactPair::kinematics_at(double t, const std::vector<double>& u) const {
-  if (!at_last_evaluated(t, u)) evaluate_kinematics(t, u, nullptr, nullptr, 0);
+const std::vector<NodeKinematics>& ContactPair::kinematics_at(double t, fem::StateView u) const {
+  if (!at_last_evaluated(t, u)) evaluate_kinematics(t, u, nullptr, {}, 0);
   return last_evaluated_.nodes;
 }
 
@@ -205,7 +209,7 @@ void ContactPair::write_rows(double t, const std::vector<NodeKinematics>& nodes,
   }
 }
 
-int ContactPair::update_states(double t, const std::vector<double>& u, const double* lambda, const double* dlambda) {
+int ContactPair::update_states(double t, fem::StateView u, const double* lambda, const double* dlambda) {
   const std::vector<NodeKinematics>& nodes = kinematics_at(t, u);
   const double entry = entry_depth(nodes);
   const int d = dim_;
@@ -286,7 +290,7 @@ double ContactPair::entry_depth(const std::vector<NodeKinematics>& nodes) const 
   return fraction * deepest;
 }
 
-std::vector<double> ContactPair::mean_normal_gaps(double t, const std::vector<double>& u) const {
+std::vector<double> ContactPair::mean_normal_gaps(double t, fem::StateView u) const {
   const std::vector<NodeKinematics>& nodes = kinematics_at(t, u);
   std::vector<double> gaps(nodes.size());
   for (size_t i = 0; i < nodes.size(); ++i)
@@ -301,7 +305,7 @@ std::vector<int> ContactPair::multiplier_vertices() const {
   return out;
 }
 
-std::vector<nonlinear::MultiplierNode> ContactPair::nodes(double t, const std::vector<double>& u,
+std::vector<nonlinear::MultiplierNode> ContactPair::nodes(double t, fem::StateView u,
                                                          const double* lambda) const {
   // Output may be written by one process: off the last evaluated point a distributed pair
   // evaluates every node here rather than call the other processes.

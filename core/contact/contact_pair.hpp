@@ -6,6 +6,7 @@
 // supplies only its kinematics: per slave node the contact normal n_i, the vector weighted
 // gap G_i and the weighted slip increment S_i with their derivatives, and the constraint
 // forces -B^T lambda on the displacement equations.
+#include <algorithm>
 #include <map>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "contact/contact_state.hpp"
 #include "contact/node_row.hpp"
 #include "contact/slave_surface.hpp"
+#include "fem/app_view.hpp"
 #include "nonlinear/multiplier_constraint.hpp"
 
 namespace stiction::contact {
@@ -89,17 +91,17 @@ public:
   std::string name() const override { return name_; }
   int n_multipliers() const override { return slave_.n_nodes() * dim_; }
   std::vector<int> multiplier_vertices() const override;
-  void begin_increment(double t_start, const std::vector<double>& u) override;
-  void evaluate(double t, const std::vector<double>& u, const double* lambda, std::vector<double>& r_u, double* r_c,
+  void begin_increment(double t_start, fem::StateView u) override;
+  void evaluate(double t, fem::StateView u, const double* lambda, fem::ResidualView r_u, double* r_c,
                 nonlinear::SparseEntries* jacobian, PetscInt offset) const override;
-  void evaluate_rows(double t, const std::vector<double>& u, const double* lambda, double* r_c) const override;
-  int update_states(double t, const std::vector<double>& u, const double* lambda, const double* dlambda) override;
+  void evaluate_rows(double t, fem::StateView u, const double* lambda, double* r_c) const override;
+  int update_states(double t, fem::StateView u, const double* lambda, const double* dlambda) override;
   void states_held(const double* lambda, const double* dlambda) override;
   std::vector<char> states() const override;
   void distribute(MPI_Comm comm, const std::vector<char>& owned) override;
   void describe_surface(nonlinear::MultiplierSurfaceEntries& out, PetscInt offset) const override;
   nonlinear::ConstraintSummary summary(const double* lambda) const override;
-  std::vector<nonlinear::MultiplierNode> nodes(double t, const std::vector<double>& u,
+  std::vector<nonlinear::MultiplierNode> nodes(double t, fem::StateView u,
                                               const double* lambda) const override;
   std::vector<double> save_state() const override;
   void restore_state(const std::vector<double>& saved) override;
@@ -107,7 +109,7 @@ public:
 
   // Mean normal gap of each slave node at u, gn_i / m_i (a length; negative: penetration),
   // +infinity at nodes without a projection on the master.
-  std::vector<double> mean_normal_gaps(double t, const std::vector<double>& u) const;
+  std::vector<double> mean_normal_gaps(double t, fem::StateView u) const;
 
   const SlaveSurface& slave() const { return slave_; }
   const ContactSettings& settings() const { return settings_; }
@@ -117,21 +119,21 @@ public:
 protected:
   // The master's part: kinematics of every slave node at u (with derivatives when asked; an
   // implementation may leave them out at inactive nodes, whose rows do not read them)
-  // and, when r_u is not null, the constraint forces r_u -= B^T lambda (with the blocks
+  // and, when r_u is not empty, the constraint forces r_u -= B^T lambda (with the blocks
   // -B^T and d(-B^T lambda)/du added to jacobian when it is not null). Distributed
   // (owns below), only the kinematics of the nodes this process owns count, and each part
   // of the forces must be added by one process: the pair sums the forces and shares the
   // owned nodes' kinematics over the processes.
-  virtual void compute_kinematics(double t, const std::vector<double>& u, const double* lambda,
-                                  std::vector<double>* r_u, nonlinear::SparseEntries* jacobian, PetscInt offset,
+  virtual void compute_kinematics(double t, fem::StateView u, const double* lambda,
+                                  fem::ResidualView r_u, nonlinear::SparseEntries* jacobian, PetscInt offset,
                                   bool with_derivatives, std::vector<NodeKinematics>& nodes) const = 0;
 
   // (t, u) is the point of the last evaluation without derivatives (whose kinematics
   // kinematics_at keeps): a master may reuse what it found there, and must record what it
   // finds in an evaluation without derivatives unless recording() is false.
   bool recording() const { return !whole_; }
-  bool at_last_evaluated(double t, const std::vector<double>& u) const {
-    return last_evaluated_.valid && last_evaluated_.t == t && last_evaluated_.u == u;
+  bool at_last_evaluated(double t, fem::StateView u) const {
+    return last_evaluated_.valid && last_evaluated_.t == t && std::ranges::equal(last_evaluated_.u, u.storage());
   }
 
   // Whether this process evaluates slave node i as its own: every node on one process, and
@@ -143,7 +145,14 @@ protected:
   int slave_tag_;
   SlaveSurface slave_;
   ContactSettings settings_;
-  std::vector<double> u_previous_;  // converged displacement at the start of the increment
+  // Converged state at the start of the increment: a copy of the storage of the view
+  // begin_increment was given, addressed as that view was (u_previous()).
+  std::vector<double> u_previous_;
+  const int* u_previous_map_ = nullptr;
+  std::size_t u_previous_n_app_ = 0;
+  fem::StateView u_previous() const {
+    return {u_previous_.data(), u_previous_.size(), u_previous_map_, u_previous_n_app_};
+  }
   double t_previous_ = 0;           // its pseudo-time
 
 private:
@@ -158,19 +167,19 @@ private:
   // a deformable master searches it for every slave quadrature point.
   // Distributed, every process must call it at the same points (a new point is evaluated
   // together).
-  const std::vector<NodeKinematics>& kinematics_at(double t, const std::vector<double>& u) const;
+  const std::vector<NodeKinematics>& kinematics_at(double t, fem::StateView u) const;
   // Evaluates the kinematics without derivatives at (t, u) (and the forces into r_u when not
-  // null) and keeps them as the last evaluated point's.
-  void evaluate_kinematics(double t, const std::vector<double>& u, const double* lambda, std::vector<double>* r_u,
+  // empty) and keeps them as the last evaluated point's.
+  void evaluate_kinematics(double t, fem::StateView u, const double* lambda, fem::ResidualView r_u,
                            PetscInt offset) const;
   // compute_kinematics, then, distributed, the forces summed and each owned node's
   // kinematics (without derivatives) copied to every process.
-  void kinematics_everywhere(double t, const std::vector<double>& u, const double* lambda, std::vector<double>* r_u,
+  void kinematics_everywhere(double t, fem::StateView u, const double* lambda, fem::ResidualView r_u,
                              nonlinear::SparseEntries* jacobian, PetscInt offset, bool with_derivatives,
                              std::vector<NodeKinematics>& nodes) const;
   // Every node's kinematics at (t, u) computed on this process alone, without collective
   // calls (for output that one process writes), leaving the last evaluation's as they are.
-  void local_kinematics(double t, const std::vector<double>& u, std::vector<NodeKinematics>& nodes) const;
+  void local_kinematics(double t, fem::StateView u, std::vector<NodeKinematics>& nodes) const;
   // Writes r_c (and, with jacobian, the owned rows of C_u and C_l) from the nodes' kinematics.
   void write_rows(double t, const std::vector<NodeKinematics>& nodes, const double* lambda, double* r_c,
                   nonlinear::SparseEntries* jacobian, PetscInt offset) const;
@@ -193,7 +202,7 @@ private:
   struct EvaluatedPoint {
     bool valid = false;
     double t = 0;
-    std::vector<double> u;
+    std::vector<double> u;  // the state's storage (fem::AppView::storage)
     std::vector<NodeKinematics> nodes;
   };
   mutable EvaluatedPoint last_evaluated_;

@@ -11,6 +11,7 @@
 #include <limits>
 #include <vector>
 
+#include "fem/app_view.hpp"
 #include "fem/basis.hpp"
 
 namespace stiction::contact {
@@ -115,7 +116,7 @@ public:
   }
   int n() const { return n_; }
 
-  FacetPoint<D> at(const SurfaceFacet& f, const typename G::Param& eta, const std::vector<double>& v) const {
+  FacetPoint<D> at(const SurfaceFacet& f, const typename G::Param& eta, fem::StateView v) const {
     FacetPoint<D> p;
     fem::eval_shape(P, kind_, eta.data(), p.N, p.dN);
     const typename G::Tangents E = reference_edges<D>(f);
@@ -143,13 +144,13 @@ public:
     return std::sqrt((E.transpose() * E).determinant());
   }
   // sum_a N_a v_a at the point's shape values.
-  typename G::Vec values(const SurfaceFacet& f, const FacetPoint<D>& p, const std::vector<double>& v) const {
+  typename G::Vec values(const SurfaceFacet& f, const FacetPoint<D>& p, fem::StateView v) const {
     typename G::Vec out = G::Vec::Zero();
     for (int a = 0; a < n_; ++a) out += p.N[a] * node_value(f, a, v);
     return out;
   }
   // sum_a dN_a/deta_k v_a (column k).
-  typename G::Tangents gradients(const SurfaceFacet& f, const FacetPoint<D>& p, const std::vector<double>& v) const {
+  typename G::Tangents gradients(const SurfaceFacet& f, const FacetPoint<D>& p, fem::StateView v) const {
     typename G::Tangents out = G::Tangents::Zero();
     for (int a = 0; a < n_; ++a) {
       const typename G::Vec va = node_value(f, a, v);
@@ -162,9 +163,11 @@ private:
   static typename G::Vec offset_of(const SurfaceFacet& f, int a) {
     return Eigen::Map<const typename G::Vec>(f.offset[a - f.n_vertices]);
   }
-  static typename G::Vec node_value(const SurfaceFacet& f, int a, const std::vector<double>& v) {
+  static typename G::Vec node_value(const SurfaceFacet& f, int a, fem::StateView v) {
     const size_t k = static_cast<size_t>(f.nodes[a]) * D;
-    return Eigen::Map<const typename G::Vec>(v.data() + k);
+    typename G::Vec x;
+    for (int c = 0; c < D; ++c) x[c] = v[k + c];
+    return x;
   }
   fem::BasisKind kind_;
   int n_;
@@ -229,7 +232,7 @@ enum class FaceNewton { Converged, Left, NoMinimum };
 // stopped short of 1e-15 and, taken for clamped, lost their d eta / du.
 template <int D, int K>
 FaceNewton face_newton(const FacetEvaluator<D>& ev, const SurfaceFacet& m, const typename Geometry<D>::Vec& x,
-                       const std::vector<double>& u, const typename Geometry<D>::Param& origin,
+                       fem::StateView u, const typename Geometry<D>::Param& origin,
                        const Eigen::Matrix<double, D - 1, K>& V, Eigen::Matrix<double, K, 1>& t) {
   using Param = typename Geometry<D>::Param;
   for (int it = 0, polish = 0; it < 30; ++it) {
@@ -252,7 +255,7 @@ FaceNewton face_newton(const FacetEvaluator<D>& ev, const SurfaceFacet& m, const
 // does not move).
 template <int D, int K>
 Projection<D> closest_on_face(const FacetEvaluator<D>& ev, const SurfaceFacet& m, const typename Geometry<D>::Vec& x,
-                              const std::vector<double>& u, const typename Geometry<D>::Param& eta,
+                              fem::StateView u, const typename Geometry<D>::Param& eta,
                               const Eigen::Matrix<double, D - 1, K>& V) {
   Projection<D> p;
   p.found = true;
@@ -270,7 +273,7 @@ Projection<D> closest_on_face(const FacetEvaluator<D>& ev, const SurfaceFacet& m
 // The crossing of the line x + t nu with m at (eta, t), found by intersect.
 template <int D>
 Projection<D> crossing_at(const FacetEvaluator<D>& ev, const SurfaceFacet& m, const typename Geometry<D>::Vec& x,
-                          const typename Geometry<D>::Vec& nu, const std::vector<double>& u,
+                          const typename Geometry<D>::Vec& nu, fem::StateView u,
                           const typename Geometry<D>::Param& eta, double t) {
   Projection<D> p;
   p.found = p.interior = p.crossing = true;
@@ -290,7 +293,7 @@ Projection<D> crossing_at(const FacetEvaluator<D>& ev, const SurfaceFacet& m, co
 // [0, 1] or leaves the segment the point is clamped to the nearer end (a vertex). Not found
 // when the distance has no minimum along the segment there.
 inline Projection<2> project(const FacetEvaluator<2>& ev, const SurfaceFacet& m, const Geometry<2>::Vec& x,
-                             const std::vector<double>& u) {
+                             fem::StateView u) {
   using Param = Geometry<2>::Param;
   const Eigen::Matrix<double, 1, 1> I = Eigen::Matrix<double, 1, 1>::Identity();
   Param t(0.5);
@@ -310,7 +313,7 @@ inline Projection<2> project(const FacetEvaluator<2>& ev, const SurfaceFacet& m,
 // the nearest of them. Not found when the distance has no minimum inside the triangle
 // (-H not positive definite) or on any edge.
 inline Projection<3> project(const FacetEvaluator<3>& ev, const SurfaceFacet& m, const Geometry<3>::Vec& x,
-                             const std::vector<double>& u) {
+                             fem::StateView u) {
   using Param = Geometry<3>::Param;
   using Edge = Eigen::Matrix<double, 2, 1>;
   Param t = Param::Constant(1.0 / 3);
@@ -343,7 +346,7 @@ inline Projection<3> project(const FacetEvaluator<3>& ev, const SurfaceFacet& m,
 // next as x moves, because the surface is continuous across its edges.
 template <int D>
 Projection<D> intersect(const FacetEvaluator<D>& ev, const SurfaceFacet& m, const typename Geometry<D>::Vec& x,
-                        const typename Geometry<D>::Vec& nu, const std::vector<double>& u) {
+                        const typename Geometry<D>::Vec& nu, fem::StateView u) {
   using G = Geometry<D>;
   constexpr int P = G::P;
   using Unknowns = Eigen::Matrix<double, D, 1>;  // (eta, t)
@@ -378,7 +381,7 @@ Projection<D> intersect(const FacetEvaluator<D>& ev, const SurfaceFacet& m, cons
 // the same arithmetic as the search's last step, so the same projection to the bit.
 template <int D>
 Projection<D> projection_at(const FacetEvaluator<D>& ev, const SurfaceFacet& m, const typename Geometry<D>::Vec& x,
-                            const typename Geometry<D>::Vec& nu, const std::vector<double>& u, bool crossing,
+                            const typename Geometry<D>::Vec& nu, fem::StateView u, bool crossing,
                             int face, const typename Geometry<D>::Param& eta, double t) {
   using Param = typename Geometry<D>::Param;
   if (crossing) return detail::crossing_at<D>(ev, m, x, nu, u, eta, t);

@@ -27,15 +27,15 @@ Vec3 RigidPlaneContact::plane_motion(double t) const {
   return d;
 }
 
-Vec3 RigidPlaneContact::b_times(const std::vector<double>& v, int i) const {
+Vec3 RigidPlaneContact::b_times(fem::StateView v, int i) const {
   Vec3 out = Vec3::Zero();
   for (int k = slave_.b_start[i]; k < slave_.b_start[i + 1]; ++k)
     for (int c = 0; c < dim_; ++c) out[c] += slave_.b_coef[k] * v[static_cast<size_t>(slave_.b_node[k]) * dim_ + c];
   return out;
 }
 
-void RigidPlaneContact::compute_kinematics(double t, const std::vector<double>& u, const double* lambda,
-                                           std::vector<double>* r_u, nonlinear::SparseEntries* jacobian,
+void RigidPlaneContact::compute_kinematics(double t, fem::StateView u, const double* lambda,
+                                           fem::ResidualView r_u, nonlinear::SparseEntries* jacobian,
                                            PetscInt offset, bool with_derivatives,
                                            std::vector<NodeKinematics>& nodes) const {
   const int d = dim_;
@@ -49,7 +49,7 @@ void RigidPlaneContact::compute_kinematics(double t, const std::vector<double>& 
     Vec3 moment = Vec3::Zero();
     for (int c = 0; c < d; ++c) moment[c] = slave_.first_moment[static_cast<size_t>(i) * d + c];
     k.G = moment + b_times(u, i) - p * slave_.lumped_mass[i];
-    k.S = b_times(u, i) - b_times(u_previous_, i) - plane_slip * slave_.lumped_mass[i];
+    k.S = b_times(u, i) - b_times(u_previous(), i) - plane_slip * slave_.lumped_mass[i];
     const PetscInt row0 = offset + static_cast<PetscInt>(i) * d;
     for (int j = slave_.b_start[i]; j < slave_.b_start[i + 1]; ++j) {
       const PetscInt dof0 = static_cast<PetscInt>(slave_.b_node[j]) * d;
@@ -57,7 +57,7 @@ void RigidPlaneContact::compute_kinematics(double t, const std::vector<double>& 
         if (with_derivatives) k.dG[dof0 + c] = k.dS[dof0 + c] = slave_.b_coef[j] * Vec3::Unit(c);
         if (!r_u) continue;
         // Constraint forces: the slave carries the traction +lambda, r_u -= B^T lambda.
-        (*r_u)[static_cast<size_t>(dof0 + c)] -= slave_.b_coef[j] * lambda[i * d + c];
+        r_u[static_cast<size_t>(dof0 + c)] -= slave_.b_coef[j] * lambda[i * d + c];
         if (jacobian) jacobian->add(dof0 + c, row0 + c, -slave_.b_coef[j]);
       }
     }

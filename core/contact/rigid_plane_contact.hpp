@@ -15,6 +15,7 @@
 #include <string>
 
 #include "contact/contact_pair.hpp"
+#include "fem/app_view.hpp"
 
 namespace stiction::contact {
 
@@ -30,10 +31,10 @@ public:
                     ContactSettings settings);
 
 private:
-  void compute_kinematics(double t, const std::vector<double>& u, const double* lambda, std::vector<double>* r_u,
+  void compute_kinematics(double t, fem::StateView u, const double* lambda, fem::ResidualView r_u,
                           nonlinear::SparseEntries* jacobian, PetscInt offset, bool with_derivatives,
                           std::vector<NodeKinematics>& nodes) const override;
-  Vec3 b_times(const std::vector<double>& v, int i) const;  // sum_a b_ia v_a
+  Vec3 b_times(fem::StateView v, int i) const;  // sum_a b_ia v_a
   Vec3 plane_motion(double t) const;
 
   RigidPlane plane_;

@@ -52,7 +52,7 @@ BoxPoint<D> box_point(const Eigen::Matrix<double, D, 1>& x) {
 // Bounding box of a facet's vertices and edge midpoints (the nodes of a P2 facet), widened
 // by margin.
 template <int D>
-Box<D> facet_box(const FacetEvaluator<D>& ev, const Facet& f, const std::vector<double>& u, double margin) {
+Box<D> facet_box(const FacetEvaluator<D>& ev, const Facet& f, fem::StateView u, double margin) {
   using Param = typename Geometry<D>::Param;
   std::vector<Param> samples;
   if constexpr (D == 2) samples = {Param(0.0), Param(0.5), Param(1.0)};
@@ -139,7 +139,7 @@ int shared_end(const Facet& a, const Facet& b) {
 // Slave parameter xi whose projection on segment m lands on m's end `end` (0 or 1), in 2D:
 // (x1(xi) - y_e) . y'_e = 0. Returns NaN when the slave facet is parallel to that normal.
 double segment_break(const FacetEvaluator<2>& ev, const Facet& slave, const Facet& m, int end,
-                     const std::vector<double>& u) {
+                     fem::StateView u) {
   using Param = Geometry<2>::Param;
   const FacetPoint<2> ye = ev.at(m, Param(static_cast<double>(end)), u);
   double xi = 0.5;
@@ -230,7 +230,7 @@ struct MasterCandidates {
 // can beat.
 template <int D>
 std::vector<Branch<D>> valid_projections(const FacetEvaluator<D>& ev, const Facet& f, const FacetPoint<D>& s,
-                                         const MasterCandidates<D>& candidates, const std::vector<double>& u,
+                                         const MasterCandidates<D>& candidates, fem::StateView u,
                                          double search_radius) {
   std::vector<Branch<D>> valid;
   const typename Geometry<D>::Vec slave_normal = facets::outward_normal<D>(f, s.dx);
@@ -305,7 +305,7 @@ void blend(std::vector<Branch<2>>& out, bool with_derivatives, std::map<PetscInt
 // This chooses the branches (the search); finish_branches completes them.
 template <int D>
 std::vector<Branch<D>> contact_point(const FacetEvaluator<D>& ev, const Facet& f, const FacetPoint<D>& s,
-                                     const MasterCandidates<D>& candidates, const std::vector<double>& u,
+                                     const MasterCandidates<D>& candidates, fem::StateView u,
                                      double search_radius) {
   std::vector<Branch<D>> valid = valid_projections<D>(ev, f, s, candidates, u, search_radius);
   if (valid.empty()) return {};
@@ -354,8 +354,8 @@ struct PointKinematics {
 // choose(s) gives the branches of slave point s (contact_point, or what a search found).
 template <int D, class Choose>
 PointKinematics<D> point_kinematics(const FacetEvaluator<D>& ev, const Facet& f, const typename Geometry<D>::Param& eta,
-                                    const Choose& choose, const std::vector<double>& u,
-                                    const std::vector<double>& u_previous, bool with_derivatives) {
+                                    const Choose& choose, fem::StateView u,
+                                    fem::StateView u_previous, bool with_derivatives) {
   using Vec = typename Geometry<D>::Vec;
   PointKinematics<D> p;
   p.s = ev.at(f, eta, u);
@@ -415,7 +415,7 @@ void add_node_kinematics(const FacetEvaluator<D>& ev, const Facet& f, const Poin
 // master point is added once per point (add_force_variation).
 template <int D>
 void add_node_forces(const FacetEvaluator<D>& ev, const Facet& f, const PointKinematics<D>& p, double wphi,
-                     const Vec3& lam, PetscInt row0, std::vector<double>& r_u, MergedEntries* jacobian) {
+                     const Vec3& lam, PetscInt row0, fem::ResidualView r_u, MergedEntries* jacobian) {
   for (int a = 0; a < ev.n(); ++a)
     for (int c = 0; c < D; ++c) {
       const PetscInt slave_dof = static_cast<PetscInt>(f.nodes[a]) * D + c;
@@ -462,7 +462,7 @@ void add_force_variation(const FacetEvaluator<D>& ev, const PointKinematics<D>& 
 template <int D>
 std::vector<std::pair<typename Geometry<D>::Param, double>> integration_points(
     const FacetEvaluator<D>& ev, const Facet& f, const MasterCandidates<D>& candidates,
-    const std::vector<double>& u) {
+    fem::StateView u) {
   using Param = typename Geometry<D>::Param;
   std::vector<std::pair<Param, double>> points;
   if constexpr (D == 2) {
@@ -525,7 +525,7 @@ SurfaceContact::SurfaceContact(std::string name, const fem::FieldSpace& space, i
 }
 
 template <int D>
-void SurfaceContact::nodal_normals(const std::vector<double>& u, const std::vector<char>& derive,
+void SurfaceContact::nodal_normals(fem::StateView u, const std::vector<char>& derive,
                                    std::vector<NodeKinematics>& nodes) const {
   using G = Geometry<D>;
   using Vec = typename G::Vec;
@@ -570,16 +570,16 @@ bool SurfaceContact::evaluated_here(const Facet& f) const {
 
 bool SurfaceContact::adds_forces(const Facet& f) const { return owns(f.node_of_vertex[0]); }
 
-void SurfaceContact::compute_kinematics(double t, const std::vector<double>& u, const double* lambda,
-                                        std::vector<double>* r_u, nonlinear::SparseEntries* jacobian, PetscInt offset,
+void SurfaceContact::compute_kinematics(double t, fem::StateView u, const double* lambda,
+                                        fem::ResidualView r_u, nonlinear::SparseEntries* jacobian, PetscInt offset,
                                         bool with_derivatives, std::vector<NodeKinematics>& nodes) const {
   if (dim_ == 2) kinematics<2>(t, u, lambda, r_u, jacobian, offset, with_derivatives, nodes);
   else kinematics<3>(t, u, lambda, r_u, jacobian, offset, with_derivatives, nodes);
 }
 
 template <int D>
-void SurfaceContact::kinematics(double t, const std::vector<double>& u, const double* lambda,
-                                std::vector<double>* r_u, nonlinear::SparseEntries* jacobian, PetscInt offset,
+void SurfaceContact::kinematics(double t, fem::StateView u, const double* lambda,
+                                fem::ResidualView r_u, nonlinear::SparseEntries* jacobian, PetscInt offset,
                                 bool with_derivatives, std::vector<NodeKinematics>& nodes) const {
   using Param = typename Geometry<D>::Param;
   const FacetEvaluator<D> ev(space_.kind(), space_.nodes_per_facet());
@@ -678,7 +678,7 @@ void SurfaceContact::kinematics(double t, const std::vector<double>& u, const do
         return replay ? replayed_branches(f, s, found_.points[found_.facet_points[k] + q])
                       : contact_point<D>(ev, f, s, candidates, u, search_radius_);
       };
-      const PointKinematics<D> p = point_kinematics<D>(ev, f, eta, choose, u, u_previous_, derive_f);
+      const PointKinematics<D> p = point_kinematics<D>(ev, f, eta, choose, u, u_previous(), derive_f);
       if (record) record_point(eta, weight, p.branches);
       if (p.branches.empty()) continue;
       const double jacobian_f = ev.reference_measure(f, p.s);
@@ -693,7 +693,7 @@ void SurfaceContact::kinematics(double t, const std::vector<double>& u, const do
         if (lambda)
           for (int c = 0; c < D; ++c) lam[c] = lambda[D * i + c];
         lam_w += wphi * lam;
-        add_node_forces<D>(ev, f, p, wphi, lam, offset + static_cast<PetscInt>(i) * D, *r_u,
+        add_node_forces<D>(ev, f, p, wphi, lam, offset + static_cast<PetscInt>(i) * D, r_u,
                            jacobian ? &facet_entries : nullptr);
       }
       if (forces_here && jacobian && derive_f) add_force_variation<D>(ev, p, lam_w, facet_entries);

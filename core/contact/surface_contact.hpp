@@ -62,6 +62,7 @@
 
 #include "contact/contact_pair.hpp"
 #include "contact/facet_projection.hpp"
+#include "fem/app_view.hpp"
 
 namespace stiction::contact {
 
@@ -76,11 +77,11 @@ public:
   }
 
 private:
-  void compute_kinematics(double t, const std::vector<double>& u, const double* lambda, std::vector<double>* r_u,
+  void compute_kinematics(double t, fem::StateView u, const double* lambda, fem::ResidualView r_u,
                           nonlinear::SparseEntries* jacobian, PetscInt offset, bool with_derivatives,
                           std::vector<NodeKinematics>& nodes) const override;
   template <int D>
-  void kinematics(double t, const std::vector<double>& u, const double* lambda, std::vector<double>* r_u,
+  void kinematics(double t, fem::StateView u, const double* lambda, fem::ResidualView r_u,
                   nonlinear::SparseEntries* jacobian, PetscInt offset, bool with_derivatives,
                   std::vector<NodeKinematics>& nodes) const;
   // Distributed, a process integrates the facets holding one of its slave nodes (every
@@ -90,7 +91,7 @@ private:
   bool adds_forces(const SurfaceFacet& f) const;
   template <int D>
   // n_i of every slave node this process evaluates; dn_i where derive[i].
-  void nodal_normals(const std::vector<double>& u, const std::vector<char>& derive,
+  void nodal_normals(fem::StateView u, const std::vector<char>& derive,
                      std::vector<NodeKinematics>& nodes) const;
 
   const fem::FieldSpace& space_;

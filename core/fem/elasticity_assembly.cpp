@@ -100,7 +100,7 @@ CellMap<D> map_of_cell(const FieldSpace& space, int c, const int* nodes, const d
 
 template <int D, int NB>
 InternalForceStatus internal_kernel(const FieldSpace& space, const std::vector<const materials::Material*>& mat,
-                                    const std::vector<double>& u, std::vector<double>* residual, StiffnessMatrix* tangent,
+                                    StateView u, ResidualView residual, StiffnessMatrix* tangent,
                                     const std::vector<int>* cells) {
   constexpr int ND = NB * D, NP = D + 1, MD = ND + NP;  // element dofs: u, then (mixed) p
   const Tabulation tab = tabulate(D, space.kind(), 2);  // nodal and hierarchical P2 share NB
@@ -220,7 +220,7 @@ InternalForceStatus internal_kernel(const FieldSpace& space, const std::vector<c
       for (int a = 0; a < np; ++a) re[ND + a] -= w * ((detF - 1) + p / kappa) * lp[a];
     }
     if (residual)
-      for (int k = 0; k < m; ++k) (*residual)[idx[k]] += re[k];
+      for (int k = 0; k < m; ++k) residual[idx[k]] += re[k];
     if (tangent) {
       for (int a = 0; a < NB; ++a)
         for (int b = 0; b < a; ++b)
@@ -248,7 +248,7 @@ auto dispatch(const FieldSpace& space, F&& f) {
 // facets, curved where the space is) given by their nodes and vertices.
 template <int D, int SD>
 void subtract_load_on(const FieldSpace& space, const std::vector<std::vector<int>>& simplex_nodes,
-                      const std::vector<const int*>& simplex_vertices, const VectorField& g, std::vector<double>& residual) {
+                      const std::vector<const int*>& simplex_vertices, const VectorField& g, ResidualView residual) {
   const Tabulation tab = tabulate(SD, space.kind(), 4);
   double X[3], val[3];
   for (size_t s = 0; s < simplex_nodes.size(); ++s) {
@@ -268,7 +268,7 @@ void subtract_load_on(const FieldSpace& space, const std::vector<std::vector<int
 
 void subtract_load(const FieldSpace& space, int sd, const std::vector<std::vector<int>>& simplex_nodes,
                    const std::vector<const int*>& simplex_vertices, const VectorField& g,
-                   std::vector<double>& residual) {
+                   ResidualView residual) {
   switch (space.dim() * 10 + sd) {
     case 21: return subtract_load_on<2, 1>(space, simplex_nodes, simplex_vertices, g, residual);
     case 22: return subtract_load_on<2, 2>(space, simplex_nodes, simplex_vertices, g, residual);
@@ -282,14 +282,14 @@ void subtract_load(const FieldSpace& space, int sd, const std::vector<std::vecto
 
 InternalForceStatus assemble_internal(const FieldSpace& space,
                                       const std::vector<const materials::Material*>& cell_material,
-                                      const std::vector<double>& u, std::vector<double>* residual, StiffnessMatrix* tangent,
+                                      StateView u, ResidualView residual, StiffnessMatrix* tangent,
                                       const std::vector<int>* cells) {
   return dispatch(space, [&](auto D, auto NB) {
     return internal_kernel<decltype(D)::value, decltype(NB)::value>(space, cell_material, u, residual, tangent, cells);
   });
 }
 
-void subtract_body_force(const FieldSpace& space, const VectorField& f, std::vector<double>& residual) {
+void subtract_body_force(const FieldSpace& space, const VectorField& f, ResidualView residual) {
   const int nc = space.mesh().n_cells();
   std::vector<std::vector<int>> nodes(nc, std::vector<int>(space.nodes_per_cell()));
   std::vector<const int*> verts(nc);
@@ -301,7 +301,7 @@ void subtract_body_force(const FieldSpace& space, const VectorField& f, std::vec
 }
 
 void subtract_traction(const FieldSpace& space, int facet_tag, const VectorField& t,
-                       std::vector<double>& residual) {
+                       ResidualView residual) {
   std::vector<std::vector<int>> nodes;
   std::vector<const int*> verts;
   for (int f = 0; f < space.mesh().n_facets(); ++f) {
@@ -340,7 +340,7 @@ Mat assemble_pressure_mass(const DofLayout& layout, const FieldSpace& space) {
 
 std::vector<double> cell_cauchy_stress(const FieldSpace& space,
                                        const std::vector<const materials::Material*>& cell_material,
-                                       const std::vector<double>& u) {
+                                       StateView u) {
   return dispatch(space, [&](auto Dc, auto NBc) {
     constexpr int D = decltype(Dc)::value, NB = decltype(NBc)::value;
     std::vector<double> out;
@@ -368,7 +368,7 @@ std::vector<double> cell_cauchy_stress(const FieldSpace& space,
 }
 
 std::array<double, 3> boundary_force(const FieldSpace& space, const std::vector<const materials::Material*>& cell_material,
-                                     const std::vector<double>& u, int facet_tag) {
+                                     StateView u, int facet_tag) {
   const mesh::Mesh& mesh = space.mesh();
   // The cell of each tagged facet and the cell's local vertex opposite to it.
   std::map<std::vector<int>, std::pair<int, int>> owner;

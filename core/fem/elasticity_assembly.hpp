@@ -8,6 +8,7 @@
 #include <limits>
 #include <vector>
 
+#include "fem/app_view.hpp"
 #include "fem/dof_layout.hpp"
 #include "fem/field_space.hpp"
 #include "fem/stiffness_matrix.hpp"
@@ -28,21 +29,21 @@ struct InternalForceStatus {
   int min_det_f_cell = -1;  // where it is
 };
 
-// Adds the internal force vector (residual may be null) and the tangent (tangent may be
-// null; values are added between its begin_assembly and end_assembly, which the caller
-// calls) for the coefficient vector u.
+// Adds the internal force vector (residual may be empty: no residual) and the tangent
+// (tangent may be null; values are added between its begin_assembly and end_assembly, which
+// the caller calls) for the coefficient vector u.
 // cell_material[c] is the law of cell c. With cells, only those cells (a rank's share of
 // the mesh, fem::MeshPartition) are assembled; the status names the first of them that fails.
 InternalForceStatus assemble_internal(const FieldSpace& space,
                                       const std::vector<const materials::Material*>& cell_material,
-                                      const std::vector<double>& u, std::vector<double>* residual,
+                                      StateView u, ResidualView residual,
                                       StiffnessMatrix* tangent, const std::vector<int>* cells = nullptr);
 
 // residual -= int_Omega f N_a (f may vary in space).
-void subtract_body_force(const FieldSpace& space, const VectorField& f, std::vector<double>& residual);
+void subtract_body_force(const FieldSpace& space, const VectorField& f, ResidualView residual);
 // residual -= int_{facets with tag} t N_a.
 void subtract_traction(const FieldSpace& space, int facet_tag, const VectorField& t,
-                       std::vector<double>& residual);
+                       ResidualView residual);
 
 // P1 mass matrix of the pressure field, M_p[i][j] = int q_i q_j over mixed cells, in the
 // pressure block's numbering (DofLayout::block_numbering; on one rank, row i = pressure
@@ -52,13 +53,13 @@ Mat assemble_pressure_mass(const DofLayout& layout, const FieldSpace& space);
 // Cauchy stress (3x3, row-major) at each cell's centroid, for output.
 std::vector<double> cell_cauchy_stress(const FieldSpace& space,
                                        const std::vector<const materials::Material*>& cell_material,
-                                       const std::vector<double>& u);
+                                       StateView u);
 
 // Integral of the first Piola traction P N over the boundary facets tagged `facet_tag`
 // (reference configuration, N the facet's outward normal): the force the body's material
 // transmits through that surface (the paper's F1 on a Dirichlet boundary, F4 / -F5 on the
 // slave / master contact surfaces). 3 components (the third is 0 in 2D).
 std::array<double, 3> boundary_force(const FieldSpace& space, const std::vector<const materials::Material*>& cell_material,
-                                     const std::vector<double>& u, int facet_tag);
+                                     StateView u, int facet_tag);
 
 }  // namespace stiction::fem

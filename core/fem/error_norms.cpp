@@ -12,7 +12,7 @@ namespace stiction::fem {
 namespace {
 
 template <int D>
-ErrorNorms errors_in(const FieldSpace& space, const std::vector<double>& u, const VectorField& exact,
+ErrorNorms errors_in(const FieldSpace& space, StateView u, const VectorField& exact,
                      const VectorGradient& exact_gradient, int degree) {
   const int nb = space.nodes_per_cell();
   const QuadratureRule rule = simplex_quadrature(D, degree);
@@ -49,7 +49,7 @@ ErrorNorms errors_in(const FieldSpace& space, const std::vector<double>& u, cons
 
 }  // namespace
 
-ErrorNorms compute_errors(const FieldSpace& space, const std::vector<double>& u, const VectorField& exact,
+ErrorNorms compute_errors(const FieldSpace& space, StateView u, const VectorField& exact,
                           const VectorGradient& exact_gradient, int degree) {
   return space.dim() == 2 ? errors_in<2>(space, u, exact, exact_gradient, degree)
                           : errors_in<3>(space, u, exact, exact_gradient, degree);

@@ -4,6 +4,7 @@
 #include <functional>
 #include <vector>
 
+#include "fem/app_view.hpp"
 #include "fem/field_space.hpp"
 
 namespace stiction::fem {
@@ -16,7 +17,7 @@ struct ErrorNorms {
   double h1_seminorm = 0;
 };
 
-ErrorNorms compute_errors(const FieldSpace& space, const std::vector<double>& u, const VectorField& exact,
+ErrorNorms compute_errors(const FieldSpace& space, StateView u, const VectorField& exact,
                           const VectorGradient& exact_gradient, int quadrature_degree = 6);
 
 }  // namespace stiction::fem

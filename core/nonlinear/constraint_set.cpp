@@ -28,12 +28,12 @@ void ConstraintSet::distribute(const fem::DofLayout& layout, PetscInt n_u) {
   }
 }
 
-void ConstraintSet::begin_increment(double t_start, const std::vector<double>& u) {
+void ConstraintSet::begin_increment(double t_start, fem::StateView u) {
   for (auto* c : constraints_) c->begin_increment(t_start, u);
 }
 
-void ConstraintSet::evaluate(double t, const std::vector<double>& u, const std::vector<double>& lambda,
-                             std::vector<double>& r_u, std::vector<double>& r_c, SparseEntries* jacobian,
+void ConstraintSet::evaluate(double t, fem::StateView u, const std::vector<double>& lambda,
+                             fem::ResidualView r_u, std::vector<double>& r_c, SparseEntries* jacobian,
                              PetscInt n_u) const {
   r_c.assign(lambda.size(), 0.0);
   for (size_t k = 0; k < constraints_.size(); ++k)
@@ -41,14 +41,14 @@ void ConstraintSet::evaluate(double t, const std::vector<double>& u, const std::
                               n_u + offset_[k]);
 }
 
-void ConstraintSet::evaluate_rows(double t, const std::vector<double>& u, const std::vector<double>& lambda,
+void ConstraintSet::evaluate_rows(double t, fem::StateView u, const std::vector<double>& lambda,
                                   std::vector<double>& r_c) const {
   r_c.assign(lambda.size(), 0.0);
   for (size_t k = 0; k < constraints_.size(); ++k)
     constraints_[k]->evaluate_rows(t, u, lambda.data() + offset_[k], r_c.data() + offset_[k]);
 }
 
-int ConstraintSet::update_states(double t, const std::vector<double>& u, const std::vector<double>& lambda,
+int ConstraintSet::update_states(double t, fem::StateView u, const std::vector<double>& lambda,
                                  const std::vector<double>& dlambda) {
   int changes = 0;
   for (size_t k = 0; k < constraints_.size(); ++k)
@@ -97,7 +97,7 @@ void ConstraintSet::restore_state(const std::vector<std::vector<double>>& saved)
   for (size_t k = 0; k < constraints_.size(); ++k) constraints_[k]->restore_state(saved[k]);
 }
 
-void ConstraintSet::visit_changes(const std::vector<char>& before, double t, const std::vector<double>& u,
+void ConstraintSet::visit_changes(const std::vector<char>& before, double t, fem::StateView u,
                                   const std::vector<double>& lambda, const ChangeVisitor& changed) const {
   size_t first = 0;
   for (size_t k = 0; k < constraints_.size(); ++k) {

@@ -7,6 +7,7 @@
 #include <functional>
 #include <vector>
 
+#include "fem/app_view.hpp"
 #include "fem/dof_layout.hpp"
 #include "nonlinear/multiplier_constraint.hpp"
 
@@ -25,17 +26,17 @@ public:
   // On several processes: tells each constraint which of its multipliers this process owns
   // (multiplier k of the set is unknown n_u + k of the layout).
   void distribute(const fem::DofLayout& layout, PetscInt n_u);
-  void begin_increment(double t_start, const std::vector<double>& u);
+  void begin_increment(double t_start, fem::StateView u);
   // r_u -= B^T lambda; r_c (resized to n_multipliers) the rows of the current states; with
   // jacobian, the blocks of (30) in the augmented numbering of a system with n_u unknowns
   // before the multipliers.
-  void evaluate(double t, const std::vector<double>& u, const std::vector<double>& lambda, std::vector<double>& r_u,
+  void evaluate(double t, fem::StateView u, const std::vector<double>& lambda, fem::ResidualView r_u,
                 std::vector<double>& r_c, SparseEntries* jacobian = nullptr, PetscInt n_u = 0) const;
   // r_c alone, for states just updated at an iterate already evaluated.
-  void evaluate_rows(double t, const std::vector<double>& u, const std::vector<double>& lambda,
+  void evaluate_rows(double t, fem::StateView u, const std::vector<double>& lambda,
                      std::vector<double>& r_c) const;
   // The state machine (Sec. 4.5) after a Newton update dlambda; returns the changes.
-  int update_states(double t, const std::vector<double>& u, const std::vector<double>& lambda,
+  int update_states(double t, fem::StateView u, const std::vector<double>& lambda,
                     const std::vector<double>& dlambda);
   void states_held(const std::vector<double>& lambda, const std::vector<double>& dlambda);
   // Every constraint's states, concatenated in order.
@@ -51,7 +52,7 @@ public:
   // Calls changed(constraint, node within it, state before, node now) for every node whose
   // state differs from `before` (states() of an earlier moment).
   using ChangeVisitor = std::function<void(const MultiplierConstraint&, int, char, const MultiplierNode&)>;
-  void visit_changes(const std::vector<char>& before, double t, const std::vector<double>& u,
+  void visit_changes(const std::vector<char>& before, double t, fem::StateView u,
                      const std::vector<double>& lambda, const ChangeVisitor& changed) const;
 
   const std::vector<MultiplierConstraint*>& constraints() const { return constraints_; }

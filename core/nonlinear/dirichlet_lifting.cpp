@@ -48,7 +48,7 @@ void DirichletLifting::set_targets(double t) {
   for (size_t k = 0; k < constrained_.size(); ++k) target_[k] = full_target[constrained_[k]];
 }
 
-bool DirichletLifting::pending(const std::vector<double>& u) const {
+bool DirichletLifting::pending(fem::StateView u) const {
   for (size_t k = 0; k < constrained_.size(); ++k)
     if (u[constrained_[k]] != target_[k]) return true;
   return false;
@@ -58,7 +58,7 @@ void DirichletLifting::impose(std::vector<double>& u) const {
   for (size_t k = 0; k < constrained_.size(); ++k) u[constrained_[k]] = target_[k];
 }
 
-void DirichletLifting::apply(const fem::DofLayout& layout, Mat A, Vec rhs, const std::vector<double>& u,
+void DirichletLifting::apply(const fem::DofLayout& layout, Mat A, Vec rhs, fem::StateView u,
                              bool lift) const {
   PetscVec x;
   STICTION_PETSC(VecDuplicate(rhs, x.out()));

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "common/petsc.hpp"
+#include "fem/app_view.hpp"
 #include "fem/dof_layout.hpp"
 #include "nonlinear/problem.hpp"
 
@@ -26,13 +27,13 @@ public:
   // The prescribed values at pseudo-time t on every constrained dof (last condition wins).
   void set_targets(double t);
   // Some constrained dof of u is not yet at its prescribed value: the next system lifts.
-  bool pending(const std::vector<double>& u) const;
+  bool pending(fem::StateView u) const;
   // The constrained dofs of u set to their prescribed values exactly (free of round-off).
   void impose(std::vector<double>& u) const;
   // Constrained rows and columns of A become identity; with lift, the prescribed increment
   // (targets - u) goes into rhs on them and, through the removed columns, into the free rows.
   // A and rhs are in the layout's numbering; each rank zeroes the rows it owns.
-  void apply(const fem::DofLayout& layout, Mat A, Vec rhs, const std::vector<double>& u, bool lift) const;
+  void apply(const fem::DofLayout& layout, Mat A, Vec rhs, fem::StateView u, bool lift) const;
 
   // 2-norm over the free dofs of a displacement-sized vector (or the leading part of one).
   double free_norm(const std::vector<double>& r) const;

@@ -16,6 +16,8 @@
 #include <mpi.h>
 #include <petscsys.h>
 
+#include "fem/app_view.hpp"
+
 namespace stiction::nonlinear {
 
 // Sparse entries (row, col, value) in the augmented numbering; duplicates are summed.
@@ -84,19 +86,19 @@ public:
   virtual void distribute(MPI_Comm comm, const std::vector<char>& owned) {}
   // At the start of a load increment from pseudo-time t_start, u is the converged state there:
   // the reference of the tangential slip increments (15)-(16).
-  virtual void begin_increment(double t_start, const std::vector<double>& u) = 0;
+  virtual void begin_increment(double t_start, fem::StateView u) = 0;
   // Adds the constraint forces to r_u (r_u -= B^T lambda), writes the constraint rows r_c
   // (n_multipliers entries) for the current states, and, when jacobian is not null, adds
   // the blocks -B^T, C_u and C_l. Multiplier k of this constraint is unknown
   // `offset + k` of the augmented system; lambda points at this constraint's multipliers.
-  virtual void evaluate(double t, const std::vector<double>& u, const double* lambda, std::vector<double>& r_u,
+  virtual void evaluate(double t, fem::StateView u, const double* lambda, fem::ResidualView r_u,
                         double* r_c, SparseEntries* jacobian, PetscInt offset) const = 0;
   // The constraint rows r_c alone, for the current states: after a state update at an
   // iterate already evaluated, the new states change the rows, not the forces on r_u.
-  virtual void evaluate_rows(double t, const std::vector<double>& u, const double* lambda, double* r_c) const = 0;
+  virtual void evaluate_rows(double t, fem::StateView u, const double* lambda, double* r_c) const = 0;
   // After a Newton update: applies the state machine (transitions A-E of Sec. 4.5) at the
   // new iterate; returns how many states changed.
-  virtual int update_states(double t, const std::vector<double>& u, const double* lambda, const double* dlambda) = 0;
+  virtual int update_states(double t, fem::StateView u, const double* lambda, const double* dlambda) = 0;
   // After a Newton update at which the driver held the states (active_set_monitor.hpp):
   // what the constraint tracks of the multipliers' progress besides its states.
   virtual void states_held(const double* lambda, const double* dlambda) {}
@@ -117,7 +119,7 @@ public:
   virtual std::vector<std::pair<std::string, int>> surfaces() const { return {}; }
   // Every multiplier node at (t, u, lambda) for reports; lambda points at this constraint's
   // multipliers. One process may call it alone (it writes the output).
-  virtual std::vector<MultiplierNode> nodes(double t, const std::vector<double>& u, const double* lambda) const = 0;
+  virtual std::vector<MultiplierNode> nodes(double t, fem::StateView u, const double* lambda) const = 0;
 };
 
 }  // namespace stiction::nonlinear

@@ -97,13 +97,13 @@ QuasiStaticSolver::QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& pro
   constraints_.distribute(layout_, problem.space->n_dofs());
 }
 
-fem::InternalForceStatus QuasiStaticSolver::residual(double t, const std::vector<double>& u,
+fem::InternalForceStatus QuasiStaticSolver::residual(double t, fem::StateView u,
                                                      std::vector<double>& r) const {
   const fem::FieldSpace& space = *problem_.space;
   r.assign(space.n_dofs(), 0.0);
-  if (partition_.whole()) return add_loads(t, r, fem::assemble_internal(space, problem_.cell_material, u, &r, nullptr));
+  if (partition_.whole()) return add_loads(t, r, fem::assemble_internal(space, problem_.cell_material, u, r, nullptr));
   // Each rank integrates its own cells; the sum is the whole residual on every rank.
-  auto status = fem::assemble_internal(space, problem_.cell_material, u, &r, nullptr, &partition_.owned_cells);
+  auto status = fem::assemble_internal(space, problem_.cell_material, u, r, nullptr, &partition_.owned_cells);
   fem::sum_over_ranks(layout_.comm(), r);
   status.inverted_cell = fem::first_cell_over_ranks(layout_.comm(), status.inverted_cell);
   status.folded_cell = fem::first_cell_over_ranks(layout_.comm(), status.folded_cell);
@@ -126,7 +126,7 @@ fem::InternalForceStatus QuasiStaticSolver::add_loads(double t, std::vector<doub
   return status;
 }
 
-fem::InternalForceStatus QuasiStaticSolver::evaluate(double t, const std::vector<double>& u,
+fem::InternalForceStatus QuasiStaticSolver::evaluate(double t, fem::StateView u,
                                                      const std::vector<double>& lambda, Residuals& r) const {
   const fem::InternalForceStatus status = residual(t, u, r.elastic);
   r.u = r.elastic;

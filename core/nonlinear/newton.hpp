@@ -39,6 +39,7 @@
 #include <string>
 #include <vector>
 
+#include "fem/app_view.hpp"
 #include "fem/dof_layout.hpp"
 #include "fem/elasticity_assembly.hpp"
 #include "fem/mesh_partition.hpp"
@@ -190,7 +191,7 @@ public:
   // Contact multipliers of every constraint, in order (empty without contact).
   const std::vector<double>& multipliers() const { return lambda_; }
   // Full residual r(u) = f_int - f_ext at pseudo-time t (constrained rows included), and status.
-  fem::InternalForceStatus residual(double t, const std::vector<double>& u, std::vector<double>& r) const;
+  fem::InternalForceStatus residual(double t, fem::StateView u, std::vector<double>& r) const;
   // The last assembled Newton system (for record/replay and tests), in layout()'s numbering.
   const NewtonSystem& system() const { return builder_.system(); }
   Mat tangent_beside_system() const { return builder_.tangent_beside_system(); }
@@ -223,7 +224,7 @@ private:
   // residual's dead loads (body force, tractions), added once the cells are summed.
   fem::InternalForceStatus add_loads(double t, std::vector<double>& r, fem::InternalForceStatus status) const;
   // Elastic part and constraint part of the residual at (u, lambda).
-  fem::InternalForceStatus evaluate(double t, const std::vector<double>& u, const std::vector<double>& lambda,
+  fem::InternalForceStatus evaluate(double t, fem::StateView u, const std::vector<double>& lambda,
                                     Residuals& r) const;
   // The system at the current iterate for its residual r (the backend's old set-up released first).
   void assemble_system(const Residuals& r, bool lift);

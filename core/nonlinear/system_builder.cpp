@@ -108,12 +108,12 @@ void NewtonSystemBuilder::add_field(const char* name, std::pair<int, int> range,
   system_.fields.push_back(std::move(f));
 }
 
-void NewtonSystemBuilder::assemble(double t, const std::vector<double>& u, const std::vector<double>& lambda,
+void NewtonSystemBuilder::assemble(double t, fem::StateView u, const std::vector<double>& lambda,
                                    const std::vector<double>& r_u, const std::vector<double>& r_c,
                                    const ConstraintSet& constraints, const DirichletLifting& lifting, bool lift) {
   if (!constraints.empty()) system_.matrix.reset();  // the caller released the backend's set-up on it
   stiffness_->begin_assembly();
-  fem::assemble_internal(*problem_.space, problem_.cell_material, u, nullptr, stiffness_.get(),
+  fem::assemble_internal(*problem_.space, problem_.cell_material, u, {}, stiffness_.get(),
                          &layout_.row_cells());
   stiffness_->end_assembly();
   if (!constraints.empty()) border_with_constraints(t, u, lambda, constraints);
@@ -126,7 +126,7 @@ void NewtonSystemBuilder::assemble(double t, const std::vector<double>& u, const
 
 // The augmented matrix (30): the tangent bordered by -B^T, C_u and C_lambda, and the
 // multiplier surface the contact preconditioner reads.
-void NewtonSystemBuilder::border_with_constraints(double t, const std::vector<double>& u,
+void NewtonSystemBuilder::border_with_constraints(double t, fem::StateView u,
                                                   const std::vector<double>& lambda, const ConstraintSet& constraints) {
   const PetscInt n_u = problem_.space->n_dofs(), m = constraints.n_multipliers();
   SparseEntries blocks;

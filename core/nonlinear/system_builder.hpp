@@ -17,6 +17,7 @@
 #include <memory>
 #include <vector>
 
+#include "fem/app_view.hpp"
 #include "fem/stiffness_matrix.hpp"
 #include "nonlinear/constraint_set.hpp"
 #include "nonlinear/dirichlet_lifting.hpp"
@@ -31,7 +32,7 @@ public:
 
   // The system at (u, lambda) at pseudo-time t for the residual (r_u, r_c) there; with lift,
   // the constrained dofs' increment to the lifting's targets enters it.
-  void assemble(double t, const std::vector<double>& u, const std::vector<double>& lambda,
+  void assemble(double t, fem::StateView u, const std::vector<double>& lambda,
                 const std::vector<double>& r_u, const std::vector<double>& r_c, const ConstraintSet& constraints,
                 const DirichletLifting& lifting, bool lift);
 
@@ -44,7 +45,7 @@ public:
 
 private:
   void add_field(const char* name, std::pair<int, int> range, int block_size);
-  void border_with_constraints(double t, const std::vector<double>& u, const std::vector<double>& lambda,
+  void border_with_constraints(double t, fem::StateView u, const std::vector<double>& lambda,
                                const ConstraintSet& constraints);
 
   const fem::DofLayout& layout_;

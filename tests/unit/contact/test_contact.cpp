@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -15,6 +16,7 @@
 #include "builtin_scenes.hpp"
 #include "registry.hpp"
 #include "nonlinear/newton.hpp"
+#include "support/scattered_storage.hpp"
 #include "support/solve_scene.hpp"
 
 namespace stiction::contact {
@@ -191,6 +193,44 @@ TEST(SurfaceContact, JacobianMatchesFiniteDifferencesOnACurvedMaster) {
   std::vector<double> u0, u, lambda;
   random_state(pair, s->space->n_dofs(), 0.01, 1, u0, u, lambda);
   expect_exact_jacobian(pair, s->space->n_dofs(), u0, u, lambda);
+}
+
+// Evaluated through scattered storage (a process's owned and ghost unknowns with a map), a
+// pair gives exactly the forces, rows and Jacobian it gives on whole vectors, the previous
+// increment's state (the slip increments S_i) read through the map it was given in.
+TEST(ContactPair, EvaluatesThroughScatteredStorageAsOnWholeVectors) {
+  for (const auto& [name, text] : {std::pair{"block-on-plane", kBlockOnPlane}, std::pair{"block-on-block", kBlockOnBlock}}) {
+    SCOPED_TRACE(name);
+    auto s = scene::build_scene(text, name, ".");
+    auto& pair = dynamic_cast<ContactPair&>(*s->contacts.at(0));
+    const int n_u = s->space->n_dofs(), n_l = pair.n_multipliers();
+    std::vector<double> u0, u, lambda;
+    random_state(pair, n_u, 0.01, name == std::string("block-on-plane") ? 2 : 1, u0, u, lambda);
+
+    pair.begin_increment(0.0, u0);
+    std::vector<double> ru(n_u, 0.0), rc(n_l, 0.0), rc_cached(n_l, 0.0);
+    nonlinear::SparseEntries J;
+    pair.evaluate(1, u, lambda.data(), ru, rc.data(), &J, n_u);
+    pair.evaluate_rows(1, u, lambda.data(), rc_cached.data());
+
+    const test::ScatteredStorage previous(u0, 3), state(u, 4);
+    test::ScatteredStorage forces(std::vector<double>(n_u, 0.0), 5);
+    std::vector<double> rc_view(n_l, 0.0), rc_view_cached(n_l, 0.0);
+    nonlinear::SparseEntries J_view;
+    pair.begin_increment(0.0, previous.view());
+    pair.evaluate(1, state.view(), lambda.data(), forces.view(), rc_view.data(), &J_view, n_u);
+    pair.evaluate_rows(1, state.view(), lambda.data(), rc_view_cached.data());
+
+    EXPECT_EQ(forces.whole(), ru);
+    EXPECT_TRUE(forces.spare_untouched());
+    EXPECT_EQ(rc_view, rc);
+    EXPECT_EQ(rc_view_cached, rc_cached);
+    EXPECT_EQ(J_view.rows, J.rows);
+    EXPECT_EQ(J_view.cols, J.cols);
+    EXPECT_EQ(J_view.values, J.values);
+    EXPECT_GT(J.size(), 0u);
+    EXPECT_NE(std::count(ru.begin(), ru.end(), 0.0), n_u);  // some node carries a force
+  }
 }
 
 // Curved reference surfaces (isoparametric P2): the base's top and the block's bottom are

@@ -87,7 +87,7 @@ TEST_P(LinearBlockIsP1, ToRoundOff) {
     residual.assign(space.n_dofs(), 0.0);
     fem::StiffnessMatrix K(PETSC_COMM_WORLD, space);
     K.begin_assembly();
-    fem::assemble_internal(space, mats, u, &residual, &K);
+    fem::assemble_internal(space, mats, u, residual, &K);
     K.end_assembly();
     Mat A = K.mat();
     PetscObjectReference(reinterpret_cast<PetscObject>(A));

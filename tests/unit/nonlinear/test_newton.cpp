@@ -45,7 +45,7 @@ TangentCheck check_tangent(const fem::FieldSpace& space, const std::vector<const
   TangentCheck out;
   fem::StiffnessMatrix stiffness(PETSC_COMM_WORLD, space);
   stiffness.begin_assembly();
-  out.inverted_cell = fem::assemble_internal(space, mats, u, nullptr, &stiffness).inverted_cell;
+  out.inverted_cell = fem::assemble_internal(space, mats, u, {}, &stiffness).inverted_cell;
   stiffness.end_assembly();
   PetscBool symmetric = PETSC_FALSE;
   MatIsSymmetric(stiffness.mat(), 1e-10, &symmetric);
@@ -60,8 +60,8 @@ TangentCheck check_tangent(const fem::FieldSpace& space, const std::vector<const
   const double h = 1e-6;
   std::vector<double> up = u, um = u, rp(space.n_dofs(), 0.0), rm(space.n_dofs(), 0.0);
   for (size_t i = 0; i < u.size(); ++i) up[i] += h * v[i], um[i] -= h * v[i];
-  fem::assemble_internal(space, mats, up, &rp, nullptr);
-  fem::assemble_internal(space, mats, um, &rm, nullptr);
+  fem::assemble_internal(space, mats, up, rp, nullptr);
+  fem::assemble_internal(space, mats, um, rm, nullptr);
   const PetscScalar* kv;
   VecGetArrayRead(Kv, &kv);
   double diff = 0, norm = 0, pressure = 0;
@@ -143,20 +143,20 @@ TEST(Assembly, ReportsAQuadraticCellFoldedBetweenItsQuadraturePoints) {
   const std::vector<const materials::Material*> mats{&law};
   std::vector<double> u(space.n_dofs(), 0.0), r(space.n_dofs(), 0.0);
   u[static_cast<size_t>(edge01) * 2] = -0.4;
-  const fem::InternalForceStatus folded = fem::assemble_internal(space, mats, u, &r, nullptr);
+  const fem::InternalForceStatus folded = fem::assemble_internal(space, mats, u, r, nullptr);
   EXPECT_EQ(folded.folded_cell, 0);
   EXPECT_LT(folded.inverted_cell, 0);
   // det F = 1 + 4 c (1 - 2x - y) for the edge coefficient c: smallest at vertex 0.
   EXPECT_NEAR(folded.min_det_f, -0.6, 1e-12);
   u[static_cast<size_t>(edge01) * 2] = -0.2;
-  const fem::InternalForceStatus valid = fem::assemble_internal(space, mats, u, &r, nullptr);
+  const fem::InternalForceStatus valid = fem::assemble_internal(space, mats, u, r, nullptr);
   EXPECT_LT(valid.folded_cell, 0);
   EXPECT_LT(valid.inverted_cell, 0);
   EXPECT_NEAR(valid.min_det_f, 0.2, 1e-12);
   // A law that does not need det F > 0 takes no part.
   materials::LinearElastic linear(10.0, 0.3);
   const std::vector<const materials::Material*> linear_mats{&linear};
-  EXPECT_EQ(fem::assemble_internal(space, linear_mats, u, &r, nullptr).min_det_f,
+  EXPECT_EQ(fem::assemble_internal(space, linear_mats, u, r, nullptr).min_det_f,
             std::numeric_limits<double>::infinity());
 }
 
@@ -642,7 +642,7 @@ TEST(Newton, SystemCarriesFieldsAndNearNullSpace) {
   fem::StiffnessMatrix K(PETSC_COMM_WORLD, c.space);
   std::vector<double> u(c.space.n_dofs(), 0.0);
   K.begin_assembly();
-  fem::assemble_internal(c.space, c.p.cell_material, u, nullptr, &K);
+  fem::assemble_internal(c.space, c.p.cell_material, u, {}, &K);
   K.end_assembly();
   PetscBool is_null;
   MatNullSpaceTest(sys.near_null_space, K.mat(), &is_null);
