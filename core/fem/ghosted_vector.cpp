@@ -1,0 +1,114 @@
+#include "fem/ghosted_vector.hpp"
+
+#include <algorithm>
+
+namespace stiction::fem {
+
+GhostPattern::GhostPattern(const DofLayout& layout, const std::vector<PetscInt>& needed) : layout_(&layout) {
+  if (layout.identity()) return;
+  for (PetscInt a : needed)
+    if (!layout.owns(a)) ghost_app_.push_back(a);
+  std::sort(ghost_app_.begin(), ghost_app_.end());
+  ghost_app_.erase(std::unique(ghost_app_.begin(), ghost_app_.end()), ghost_app_.end());
+  storage_of_app_.assign(static_cast<size_t>(layout.n_total()), -1);
+  // The owned entries in PETSc's order: storage j is global index first_owned() + j.
+  for (PetscInt a = 0; a < layout.n_total(); ++a)
+    if (layout.owns(a)) storage_of_app_[a] = static_cast<int>(layout.global(a) - layout.first_owned());
+  const PetscInt n_owned = layout.n_owned();
+  ghost_global_.reserve(ghost_app_.size());
+  for (size_t g = 0; g < ghost_app_.size(); ++g) {
+    storage_of_app_[ghost_app_[g]] = static_cast<int>(n_owned + static_cast<PetscInt>(g));
+    ghost_global_.push_back(layout.global(ghost_app_[g]));
+  }
+}
+
+GhostedVector::GhostedVector(std::shared_ptr<const GhostPattern> pattern)
+    : pattern_(std::move(pattern)), storage_(static_cast<size_t>(pattern_->n_stored()), 0.0) {
+  create_vec();
+}
+
+GhostedVector::GhostedVector(const GhostedVector& other) : pattern_(other.pattern_), storage_(other.storage_) {
+  create_vec();
+}
+
+GhostedVector& GhostedVector::operator=(const GhostedVector& other) {
+  if (this == &other) return *this;
+  if (pattern_ == other.pattern_) {
+    std::copy(other.storage_.begin(), other.storage_.end(), storage_.begin());  // the Vec wraps storage_
+    return *this;
+  }
+  pattern_ = other.pattern_;
+  storage_ = other.storage_;
+  create_vec();
+  return *this;
+}
+
+void GhostedVector::create_vec() {
+  const DofLayout& layout = pattern_->layout();
+  const auto& ghosts = pattern_->ghost_global_;
+  vec_.reset();
+  STICTION_PETSC(VecCreateGhostWithArray(layout.comm(), layout.n_owned(), layout.n_total(),
+                                         static_cast<PetscInt>(ghosts.size()), ghosts.data(), storage_.data(),
+                                         vec_.out()));
+}
+
+StateView GhostedVector::view() const {
+  const auto& map = pattern_->storage_of_app();
+  if (map.empty()) return storage_;
+  return {storage_.data(), storage_.size(), map.data(), map.size()};
+}
+
+ResidualView GhostedVector::view() {
+  const auto& map = pattern_->storage_of_app();
+  if (map.empty()) return storage_;
+  return {storage_.data(), storage_.size(), map.data(), map.size()};
+}
+
+void GhostedVector::update_ghosts() {
+  if (pattern_->layout().identity()) return;
+  STICTION_PETSC(VecGhostUpdateBegin(vec_, INSERT_VALUES, SCATTER_FORWARD));
+  STICTION_PETSC(VecGhostUpdateEnd(vec_, INSERT_VALUES, SCATTER_FORWARD));
+}
+
+void GhostedVector::add_ghosts_to_owners() {
+  if (pattern_->layout().identity()) return;
+  STICTION_PETSC(VecGhostUpdateBegin(vec_, ADD_VALUES, SCATTER_REVERSE));
+  STICTION_PETSC(VecGhostUpdateEnd(vec_, ADD_VALUES, SCATTER_REVERSE));
+}
+
+void GhostedVector::assign_whole(const std::vector<double>& whole) {
+  const auto& map = pattern_->storage_of_app();
+  if (map.empty()) {
+    std::copy(whole.begin(), whole.begin() + std::min(whole.size(), storage_.size()), storage_.begin());
+    return;
+  }
+  for (size_t a = 0; a < std::min(whole.size(), map.size()); ++a)
+    if (map[a] >= 0) storage_[static_cast<size_t>(map[a])] = whole[a];
+}
+
+std::vector<double> GhostedVector::whole() const {
+  std::vector<double> out;
+  pattern_->layout().gather(vec_, out);
+  return out;
+}
+
+void GhostedVector::fill(double value) { std::fill(storage_.begin(), storage_.end(), value); }
+
+std::vector<PetscInt> unknowns_of_cells(const FieldSpace& space, const std::vector<int>& cells) {
+  const int d = space.dim();
+  std::vector<int> nodes(space.nodes_per_cell());
+  std::vector<char> held(static_cast<size_t>(space.n_dofs()), 0);
+  for (int c : cells) {
+    space.cell_nodes(c, nodes.data());
+    for (int n : nodes) {
+      for (int k = 0; k < d; ++k) held[static_cast<size_t>(n) * d + k] = 1;
+      if (space.is_vertex_node(n) && space.pressure_dof(n) >= 0) held[space.pressure_dof(n)] = 1;
+    }
+  }
+  std::vector<PetscInt> out;
+  for (size_t a = 0; a < held.size(); ++a)
+    if (held[a]) out.push_back(static_cast<PetscInt>(a));
+  return out;
+}
+
+}  // namespace stiction::fem

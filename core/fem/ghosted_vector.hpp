@@ -1,0 +1,78 @@
+#pragma once
+// The Newton state held per process: each process stores the unknowns it owns
+// (fem::DofLayout) and, as ghosts, the others it reads (the nodes of its row cells, the
+// contact surfaces), instead of the whole vector. This is PETSc's ghosted vector
+// (VecCreateGhostWithArray): storage = owned entries in PETSc's order, then the ghosts;
+// VecGhostUpdate copies owners' values to the ghosts (forward) or adds the ghosts' values
+// into their owners (reverse). The assembly and the contact code address the storage by
+// app index through fem::AppView, with the pattern's map. On one process the storage is
+// the whole vector in app order and the view needs no map.
+#include <memory>
+#include <vector>
+
+#include "common/petsc.hpp"
+#include "fem/app_view.hpp"
+#include "fem/dof_layout.hpp"
+
+namespace stiction::fem {
+
+// Which unknowns a process holds, shared by every vector of that shape.
+class GhostPattern {
+public:
+  // The layout's owned unknowns, and as ghosts those of `needed` (app indices, in any
+  // order, repeats and owned ones allowed) that another process owns.
+  GhostPattern(const DofLayout& layout, const std::vector<PetscInt>& needed);
+
+  const DofLayout& layout() const { return *layout_; }
+  PetscInt n_owned() const { return layout_->n_owned(); }
+  PetscInt n_ghosts() const { return static_cast<PetscInt>(ghost_app_.size()); }
+  PetscInt n_stored() const { return n_owned() + n_ghosts(); }
+  // Storage index of every app unknown, -1 where not held (empty on one process: the
+  // storage index is the app index).
+  const std::vector<int>& storage_of_app() const { return storage_of_app_; }
+  // The ghosts' app indices, ascending (storage n_owned() + g holds ghost g).
+  const std::vector<PetscInt>& ghost_app() const { return ghost_app_; }
+  bool holds(PetscInt app) const { return storage_of_app_.empty() || storage_of_app_[app] >= 0; }
+
+private:
+  const DofLayout* layout_;
+  std::vector<int> storage_of_app_;
+  std::vector<PetscInt> ghost_app_;
+  std::vector<PetscInt> ghost_global_;
+  friend class GhostedVector;
+};
+
+class GhostedVector {
+public:
+  explicit GhostedVector(std::shared_ptr<const GhostPattern> pattern);
+  GhostedVector(const GhostedVector& other);
+  GhostedVector& operator=(const GhostedVector& other);
+
+  const GhostPattern& pattern() const { return *pattern_; }
+  StateView view() const;
+  ResidualView view();
+  // The owned entries as a distributed PETSc vector (the ghosts are its local form's tail).
+  Vec vec() const { return vec_; }
+
+  // Each ghost takes its owner's value.
+  void update_ghosts();
+  // Each owner adds its ghosts' values (the ghosts keep theirs).
+  void add_ghosts_to_owners();
+  // Every held entry from an app-ordered whole vector (the same on every process).
+  void assign_whole(const std::vector<double>& whole);
+  // The whole vector in app order on every process (from the owned entries).
+  std::vector<double> whole() const;
+  void fill(double value);
+
+private:
+  void create_vec();
+  std::shared_ptr<const GhostPattern> pattern_;
+  std::vector<double> storage_;
+  PetscVec vec_;
+};
+
+// The app unknowns of the nodes of the given cells (displacements of every node, the
+// pressures of their vertices in a mixed space), ascending.
+std::vector<PetscInt> unknowns_of_cells(const FieldSpace& space, const std::vector<int>& cells);
+
+}  // namespace stiction::fem
