@@ -133,19 +133,19 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   const int last_step = scene->problem.step_reaching(until);
   // A load step's VTU: written by rank 0, or on several processes one piece per process
   // (its own cells) and a PVTU by rank 0 that joins them.
-  const auto write_step_output = [&](const nonlinear::StepResult& r) {
+  const auto write_step_output = [&](const nonlinear::StepResult& r, const std::vector<double>& u) {
     const std::string stem = fmt::format("step-{:03d}", r.step);
     if (processes == 1) {
-      write_vtu(out_dir + "/" + stem + ".vtu", *scene, newton.displacement(), newton.multipliers(), r.time);
+      write_vtu(out_dir + "/" + stem + ".vtu", *scene, u, newton.multipliers(), r.time);
       pvd->add(r.time, stem + ".vtu");
       return;
     }
-    write_vtu_piece(fmt::format("{}/{}-p{}.vtu", out_dir, stem, rank), *scene, newton.displacement(),
-                    newton.multipliers(), r.time, newton.partition().owned_cells, rank);
+    write_vtu_piece(fmt::format("{}/{}-p{}.vtu", out_dir, stem, rank), *scene, u, newton.multipliers(), r.time,
+                    newton.partition().owned_cells, rank);
     if (!writer) return;
     std::vector<std::string> pieces;
     for (int k = 0; k < processes; ++k) pieces.push_back(fmt::format("{}-p{}.vtu", stem, k));
-    write_pvtu(out_dir + "/" + stem + ".pvtu", *scene, newton.displacement(), newton.multipliers(), r.time, pieces);
+    write_pvtu(out_dir + "/" + stem + ".pvtu", *scene, u, newton.multipliers(), r.time, pieces);
     pvd->add(r.time, stem + ".pvtu");
   };
   std::unique_ptr<RunRecorder> record;
@@ -168,11 +168,16 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
     if (table) table->add(r, *scene);
     if (iteration_table) iteration_table->add(r);
     if (record) record->add(r);  // before the checkpoint
-    if (r.completes_step && writer) write_checkpoint(out_dir + "/checkpoint.bin",
-                                              {scene->name, scene->level, newton.state(), newton.linear_tally(),
-                                               newton.cut_back()});
-    if (contact_table && r.completes_step) contact_table->add(r, *scene, newton.displacement(), newton.multipliers());
-    if (scene->output.vtu && o.write_vtu && r.completes_step) write_step_output(r);
+    if (r.completes_step) {
+      // The whole state, gathered on every process (each takes part), for the checkpoint and
+      // the contact table that rank 0 writes and the VTU pieces.
+      const nonlinear::QuasiStaticSolver::State state = newton.state();
+      if (writer)
+        write_checkpoint(out_dir + "/checkpoint.bin",
+                         {scene->name, scene->level, state, newton.linear_tally(), newton.cut_back()});
+      if (contact_table) contact_table->add(r, *scene, state.u, newton.multipliers());
+      if (scene->output.vtu && o.write_vtu) write_step_output(r, state.u);
+    }
     if (verbose)
       fmt::print(stderr, "step {}/{}{}: t = {:.6g}, {} after {} Newton iterations, residual {:.3e} (reference {:.3e}), "
                  "{:.2f} s{}\n",

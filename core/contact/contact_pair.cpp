@@ -116,25 +116,15 @@ void ContactPair::distribute(MPI_Comm comm, const std::vector<char>& owned) {
 }
 
 // Each process integrates what it owns: the per-node sums of its nodes and its share of the
-// forces (compute_kinematics). The forces are summed like the elastic residual
-// (fem::sum_over_ranks: the same bits on every process); a node's values come from its
-// owner alone, so the sum copies them exactly.
+// forces (compute_kinematics), which the caller sums over processes like the elastic
+// residual (fem::GhostedVector::add_ghosts_to_owners); a node's kinematics come from its
+// owner alone and are copied to every process.
 void ContactPair::kinematics_everywhere(double t, fem::StateView u, const double* lambda,
                                         fem::ResidualView r_u, nonlinear::SparseEntries* jacobian,
                                         PetscInt offset, bool with_derivatives,
                                         std::vector<NodeKinematics>& nodes) const {
-  if (!distributed()) {
-    compute_kinematics(t, u, lambda, r_u, jacobian, offset, with_derivatives, nodes);
-    return;
-  }
-  std::vector<double> forces;
-  if (r_u) forces.assign(r_u.size(), 0.0);
-  compute_kinematics(t, u, lambda, r_u ? fem::ResidualView(forces) : fem::ResidualView(), jacobian, offset,
-                     with_derivatives, nodes);
-  if (r_u) {
-    fem::sum_over_ranks(comm_, forces);
-    for (size_t k = 0; k < forces.size(); ++k) r_u[k] += forces[k];
-  }
+  compute_kinematics(t, u, lambda, r_u, jacobian, offset, with_derivatives, nodes);
+  if (!distributed()) return;
   constexpr int kValues = 10;  // n, G, S, admissible
   std::vector<double> values(nodes.size() * kValues, 0.0);
   for (size_t i = 0; i < nodes.size(); ++i) {

@@ -122,8 +122,8 @@ protected:
   // and, when r_u is not empty, the constraint forces r_u -= B^T lambda (with the blocks
   // -B^T and d(-B^T lambda)/du added to jacobian when it is not null). Distributed
   // (owns below), only the kinematics of the nodes this process owns count, and each part
-  // of the forces must be added by one process: the pair sums the forces and shares the
-  // owned nodes' kinematics over the processes.
+  // of the forces must be added by one process: the pair shares the owned nodes'
+  // kinematics over the processes, and the caller sums the forces.
   virtual void compute_kinematics(double t, fem::StateView u, const double* lambda,
                                   fem::ResidualView r_u, nonlinear::SparseEntries* jacobian, PetscInt offset,
                                   bool with_derivatives, std::vector<NodeKinematics>& nodes) const = 0;
@@ -172,8 +172,8 @@ private:
   // empty) and keeps them as the last evaluated point's.
   void evaluate_kinematics(double t, fem::StateView u, const double* lambda, fem::ResidualView r_u,
                            PetscInt offset) const;
-  // compute_kinematics, then, distributed, the forces summed and each owned node's
-  // kinematics (without derivatives) copied to every process.
+  // compute_kinematics, then, distributed, each owned node's kinematics (without
+  // derivatives) copied to every process (the forces stay each process's share).
   void kinematics_everywhere(double t, fem::StateView u, const double* lambda, fem::ResidualView r_u,
                              nonlinear::SparseEntries* jacobian, PetscInt offset, bool with_derivatives,
                              std::vector<NodeKinematics>& nodes) const;

@@ -47,6 +47,8 @@ public:
     assert(map_[app] >= 0);
     return data_[map_[app]];
   }
+  // Whether the storage holds unknown k.
+  bool holds(std::size_t app) const { return !map_ || map_[app] >= 0; }
   // The number of app unknowns addressed (not the number stored).
   std::size_t size() const { return size_; }
   explicit operator bool() const { return data_ != nullptr; }

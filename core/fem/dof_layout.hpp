@@ -39,6 +39,9 @@ public:
   bool owns(PetscInt app) const { return identity() || owner_[app] == rank_; }
   int owner(PetscInt app) const { return identity() ? 0 : owner_[app]; }
 
+  // The app index of the owned unknown at position j of this rank's range (PETSc index
+  // first_owned() + j).
+  PetscInt app_of_owned(PetscInt j) const { return identity() ? j : owned_app_[j]; }
   // A vector of the whole system's size with this layout's ownership.
   Vec create_vector() const;
   // The owned entries of v from app-ordered values (values[k] is unknown k; values may be

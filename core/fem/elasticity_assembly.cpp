@@ -245,7 +245,9 @@ auto dispatch(const FieldSpace& space, F&& f) {
 }
 
 // Integrates residual -= int g(X) N_a over simplices of dimension SD (cells or boundary
-// facets, curved where the space is) given by their nodes and vertices.
+// facets, curved where the space is) given by their nodes and vertices, skipping those with
+// a node that residual's storage does not hold (on several processes, a simplex that
+// reaches a process's owned rows has every node held: ghosted_vector.hpp).
 template <int D, int SD>
 void subtract_load_on(const FieldSpace& space, const std::vector<std::vector<int>>& simplex_nodes,
                       const std::vector<const int*>& simplex_vertices, const VectorField& g, ResidualView residual) {
@@ -254,6 +256,8 @@ void subtract_load_on(const FieldSpace& space, const std::vector<std::vector<int
   for (size_t s = 0; s < simplex_nodes.size(); ++s) {
     const int* v = simplex_vertices[s];
     const int* nodes = simplex_nodes[s].data();
+    if (!std::all_of(nodes, nodes + tab.n, [&](int n) { return residual.holds(static_cast<size_t>(n) * D); }))
+      continue;
     for (int q = 0; q < tab.rule.size(); ++q) {
       const double* N = &tab.N[static_cast<size_t>(q) * tab.n];
       const auto J = simplex_jacobian<D, SD>(space, v, nodes, tab.n, &tab.dN[static_cast<size_t>(q) * tab.n * SD]);
@@ -368,7 +372,7 @@ std::vector<double> cell_cauchy_stress(const FieldSpace& space,
 }
 
 std::array<double, 3> boundary_force(const FieldSpace& space, const std::vector<const materials::Material*>& cell_material,
-                                     StateView u, int facet_tag) {
+                                     StateView u, int facet_tag, const DofLayout* layout) {
   const mesh::Mesh& mesh = space.mesh();
   // The cell of each tagged facet and the cell's local vertex opposite to it.
   std::map<std::vector<int>, std::pair<int, int>> owner;
@@ -376,6 +380,7 @@ std::array<double, 3> boundary_force(const FieldSpace& space, const std::vector<
     if (mesh.facet_tags[f] == facet_tag) {
       std::vector<int> key(mesh.facet(f), mesh.facet(f) + mesh.dim);
       std::sort(key.begin(), key.end());
+      if (layout && !layout->owns(static_cast<PetscInt>(key[0]) * mesh.dim)) continue;
       owner[key] = {-1, -1};
     }
   for (int c = 0; c < mesh.n_cells(); ++c)

@@ -58,8 +58,10 @@ std::vector<double> cell_cauchy_stress(const FieldSpace& space,
 // Integral of the first Piola traction P N over the boundary facets tagged `facet_tag`
 // (reference configuration, N the facet's outward normal): the force the body's material
 // transmits through that surface (the paper's F1 on a Dirichlet boundary, F4 / -F5 on the
-// slave / master contact surfaces). 3 components (the third is 0 in 2D).
+// slave / master contact surfaces). 3 components (the third is 0 in 2D). With a layout,
+// only the facets whose lowest vertex this process owns (their cells reach its owned rows,
+// so u holds their nodes); the caller sums over processes.
 std::array<double, 3> boundary_force(const FieldSpace& space, const std::vector<const materials::Material*>& cell_material,
-                                     StateView u, int facet_tag);
+                                     StateView u, int facet_tag, const DofLayout* layout = nullptr);
 
 }  // namespace stiction::fem

@@ -111,4 +111,20 @@ std::vector<PetscInt> unknowns_of_cells(const FieldSpace& space, const std::vect
   return out;
 }
 
+std::vector<PetscInt> unknowns_of_facets(const FieldSpace& space, const std::vector<int>& tags) {
+  const int d = space.dim();
+  const mesh::Mesh& mesh = space.mesh();
+  std::vector<int> nodes(space.nodes_per_facet());
+  std::vector<PetscInt> out;
+  for (int f = 0; f < mesh.n_facets(); ++f) {
+    if (std::find(tags.begin(), tags.end(), mesh.facet_tags[f]) == tags.end()) continue;
+    space.facet_nodes(f, nodes.data());
+    for (int n : nodes)
+      for (int k = 0; k < d; ++k) out.push_back(static_cast<PetscInt>(n) * d + k);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 }  // namespace stiction::fem

@@ -74,5 +74,7 @@ private:
 // The app unknowns of the nodes of the given cells (displacements of every node, the
 // pressures of their vertices in a mixed space), ascending.
 std::vector<PetscInt> unknowns_of_cells(const FieldSpace& space, const std::vector<int>& cells);
+// The displacement unknowns of the nodes of the boundary facets with the given tags, ascending.
+std::vector<PetscInt> unknowns_of_facets(const FieldSpace& space, const std::vector<int>& tags);
 
 }  // namespace stiction::fem

@@ -107,6 +107,12 @@ void sum_over_ranks(MPI_Comm comm, std::vector<double>& v) {
   MPI_Bcast(v.data(), n, MPI_DOUBLE, 0, comm);
 }
 
+double sum_over_ranks(MPI_Comm comm, double v) {
+  std::vector<double> one{v};
+  sum_over_ranks(comm, one);
+  return one[0];
+}
+
 int first_cell_over_ranks(MPI_Comm comm, int c) {
   int mine = c >= 0 ? c : std::numeric_limits<int>::max(), first;
   MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm);

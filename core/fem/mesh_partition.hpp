@@ -32,6 +32,7 @@ MeshPartition partition_cells(MPI_Comm comm, const mesh::Mesh& mesh);
 // The sum over ranks of each rank's v, on every rank (reduced on rank 0 and broadcast, so
 // every rank holds the same bits: the replicated Newton state must not drift apart).
 void sum_over_ranks(MPI_Comm comm, std::vector<double>& v);
+double sum_over_ranks(MPI_Comm comm, double v);
 // The smallest of each rank's cell index c >= 0, or -1 when no rank has one.
 int first_cell_over_ranks(MPI_Comm comm, int c);
 

@@ -48,14 +48,19 @@ void DirichletLifting::set_targets(double t) {
   for (size_t k = 0; k < constrained_.size(); ++k) target_[k] = full_target[constrained_[k]];
 }
 
-bool DirichletLifting::pending(fem::StateView u) const {
-  for (size_t k = 0; k < constrained_.size(); ++k)
-    if (u[constrained_[k]] != target_[k]) return true;
-  return false;
+bool DirichletLifting::pending(const fem::DofLayout& layout, fem::StateView u) const {
+  int mine = 0;
+  for (size_t k = 0; k < constrained_.size() && !mine; ++k)
+    if (layout.owns(constrained_[k]) && u[constrained_[k]] != target_[k]) mine = 1;
+  if (layout.identity()) return mine;
+  int any = 0;
+  MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, layout.comm());
+  return any;
 }
 
-void DirichletLifting::impose(std::vector<double>& u) const {
-  for (size_t k = 0; k < constrained_.size(); ++k) u[constrained_[k]] = target_[k];
+void DirichletLifting::impose(fem::ResidualView u) const {
+  for (size_t k = 0; k < constrained_.size(); ++k)
+    if (u.holds(constrained_[k])) u[constrained_[k]] = target_[k];
 }
 
 void DirichletLifting::apply(const fem::DofLayout& layout, Mat A, Vec rhs, fem::StateView u,
@@ -75,29 +80,49 @@ void DirichletLifting::apply(const fem::DofLayout& layout, Mat A, Vec rhs, fem::
   STICTION_PETSC(MatZeroRowsColumns(A, static_cast<PetscInt>(rows.size()), rows.data(), 1.0, x, rhs));
 }
 
-double DirichletLifting::free_norm(const std::vector<double>& r) const {
+double DirichletLifting::free_norm(const fem::DofLayout& layout, fem::StateView r) const {
   double s = 0;
-  for (size_t i = 0; i < r.size(); ++i)
-    if (!is_constrained_[i]) s += r[i] * r[i];
-  return std::sqrt(s);
+  const size_t n = is_constrained_.size();
+  if (layout.identity()) {
+    for (size_t i = 0; i < n; ++i)
+      if (!is_constrained_[i]) s += r[i] * r[i];
+    return std::sqrt(s);
+  }
+  for (PetscInt j = 0; j < layout.n_owned(); ++j) {
+    const auto a = static_cast<size_t>(layout.app_of_owned(j));
+    if (a < n && !is_constrained_[a]) s += r[a] * r[a];
+  }
+  return std::sqrt(fem::sum_over_ranks(layout.comm(), s));
 }
 
 double DirichletLifting::free_norm(const fem::DofLayout& layout, Vec v) const {
-  std::vector<double> b;
-  layout.gather(v, b);
-  b.resize(is_constrained_.size());
-  return free_norm(b);
+  const PetscScalar* a;
+  STICTION_PETSC(VecGetArrayRead(v, &a));
+  PetscInt n_local;
+  STICTION_PETSC(VecGetLocalSize(v, &n_local));
+  double s = 0;
+  for (PetscInt j = 0; j < n_local; ++j) {
+    const auto app = static_cast<size_t>(layout.app_of_owned(j));
+    if (app < is_constrained_.size() && !is_constrained_[app]) s += a[j] * a[j];
+  }
+  STICTION_PETSC(VecRestoreArrayRead(v, &a));
+  return std::sqrt(layout.identity() ? s : fem::sum_over_ranks(layout.comm(), s));
 }
 
-std::map<std::string, std::array<double, 3>> DirichletLifting::reactions(const std::vector<double>& r) const {
+std::map<std::string, std::array<double, 3>> DirichletLifting::reactions(const fem::DofLayout& layout,
+                                                                        fem::StateView r) const {
   const fem::FieldSpace& space = *problem_.space;
   const int d = space.dim();
   std::map<std::string, std::array<double, 3>> out;
   for (size_t b = 0; b < problem_.dirichlet.size(); ++b) {
-    std::array<double, 3> f{0, 0, 0};
+    std::vector<double> f(3, 0.0);
     for (int n : bc_nodes_[b])
-      for (int k = 0; k < d; ++k) f[k] += space.unit_weight(n) * r[static_cast<size_t>(n) * d + k];
-    out[problem_.dirichlet[b].name] = f;
+      for (int k = 0; k < d; ++k) {
+        const size_t dof = static_cast<size_t>(n) * d + k;
+        if (layout.owns(static_cast<PetscInt>(dof))) f[k] += space.unit_weight(n) * r[dof];
+      }
+    if (!layout.identity()) fem::sum_over_ranks(layout.comm(), f);
+    out[problem_.dirichlet[b].name] = {f[0], f[1], f[2]};
   }
   return out;
 }

@@ -26,21 +26,24 @@ public:
 
   // The prescribed values at pseudo-time t on every constrained dof (last condition wins).
   void set_targets(double t);
-  // Some constrained dof of u is not yet at its prescribed value: the next system lifts.
-  bool pending(fem::StateView u) const;
-  // The constrained dofs of u set to their prescribed values exactly (free of round-off).
-  void impose(std::vector<double>& u) const;
+  // Some constrained dof of u is not yet at its prescribed value: the next system lifts
+  // (each process tests the dofs it owns; the answer is the same on every process).
+  bool pending(const fem::DofLayout& layout, fem::StateView u) const;
+  // The constrained dofs of u that its storage holds set to their prescribed values exactly
+  // (free of round-off).
+  void impose(fem::ResidualView u) const;
   // Constrained rows and columns of A become identity; with lift, the prescribed increment
   // (targets - u) goes into rhs on them and, through the removed columns, into the free rows.
   // A and rhs are in the layout's numbering; each rank zeroes the rows it owns.
   void apply(const fem::DofLayout& layout, Mat A, Vec rhs, fem::StateView u, bool lift) const;
 
-  // 2-norm over the free dofs of a displacement-sized vector (or the leading part of one).
-  double free_norm(const std::vector<double>& r) const;
+  // 2-norm over the free displacement (and pressure) dofs, from the entries each process
+  // owns, the same bits on every process (fem::sum_over_ranks).
+  double free_norm(const fem::DofLayout& layout, fem::StateView r) const;
   double free_norm(const fem::DofLayout& layout, Vec v) const;
   // Total force per Dirichlet condition: sum of w_n r_n over its nodes, w the coefficients
-  // of the constant 1 in the space's basis.
-  std::map<std::string, std::array<double, 3>> reactions(const std::vector<double>& r) const;
+  // of the constant 1 in the space's basis (owned entries, summed over processes).
+  std::map<std::string, std::array<double, 3>> reactions(const fem::DofLayout& layout, fem::StateView r) const;
 
 private:
   const ElasticityProblem& problem_;

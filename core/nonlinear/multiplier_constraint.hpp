@@ -79,10 +79,11 @@ public:
   // multipliers this process owns (owned[k] for multiplier k; the rows of a node's
   // multipliers have one owner). From then on a constraint may evaluate on each process only
   // what that process owns, provided evaluate still returns, on every process, every r_c
-  // entry and the whole constraint force on r_u, and the Jacobian entries it computes
-  // (any row) are computed by one process alone: the system builder sends each entry to
-  // the owner of its row. Without the call, or with owned empty, every process evaluates
-  // everything.
+  // entry, adds to r_u a share of the constraint force such that the shares of all
+  // processes sum to the whole force (the caller sums them: fem::GhostedVector::
+  // add_ghosts_to_owners), and computes each Jacobian entry (any row) on one process alone:
+  // the system builder sends each entry to the owner of its row. Without the call, or with
+  // owned empty, every process evaluates everything.
   virtual void distribute(MPI_Comm comm, const std::vector<char>& owned) {}
   // At the start of a load increment from pseudo-time t_start, u is the converged state there:
   // the reference of the tangential slip increments (15)-(16).

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
+#include <utility>
 
 #include "common/error.hpp"
 #include "fem/elasticity_assembly.hpp"
@@ -69,7 +71,9 @@ double next_forcing_term(double eta_prev, double r_now, double r_prev, double r_
 // The residual of the augmented system: u rows (the elastic part kept apart: the contact
 // forces are r.u - r.elastic) and constraint rows.
 struct QuasiStaticSolver::Residuals {
-  std::vector<double> elastic, u, c;
+  explicit Residuals(const std::shared_ptr<const fem::GhostPattern>& pattern) : elastic(pattern), u(pattern) {}
+  fem::GhostedVector elastic, u;
+  std::vector<double> c;
 };
 
 namespace {
@@ -92,19 +96,37 @@ QuasiStaticSolver::QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& pro
       partition_(fem::partition_cells(comm, problem.space->mesh())),
       layout_(comm, *problem.space, partition_, constraints_.multiplier_vertices()),
       builder_(layout_, problem, constraints_.n_multipliers()),
-      u_(problem.space->n_dofs(), 0.0),
-      lambda_(constraints_.n_multipliers(), 0.0) {
+      pattern_(std::make_shared<fem::GhostPattern>(layout_, unknowns_read())),
+      u_(pattern_),
+      lambda_(constraints_.n_multipliers(), 0.0),
+      contact_share_(pattern_),
+      force_scratch_(pattern_) {
   constraints_.distribute(layout_, problem.space->n_dofs());
 }
 
-fem::InternalForceStatus QuasiStaticSolver::residual(double t, fem::StateView u,
-                                                     std::vector<double>& r) const {
+std::vector<PetscInt> QuasiStaticSolver::unknowns_read() const {
+  if (layout_.identity()) return {};
+  std::vector<PetscInt> out = fem::unknowns_of_cells(*problem_.space, layout_.row_cells());
+  std::vector<int> tags;
+  for (const auto* c : problem_.constraints)
+    for (const auto& [role, tag] : c->surfaces()) tags.push_back(tag);
+  const std::vector<PetscInt> surfaces = fem::unknowns_of_facets(*problem_.space, tags);
+  out.insert(out.end(), surfaces.begin(), surfaces.end());
+  return out;
+}
+
+fem::InternalForceStatus QuasiStaticSolver::residual(double t, fem::StateView u, fem::GhostedVector& r) const {
   const fem::FieldSpace& space = *problem_.space;
-  r.assign(space.n_dofs(), 0.0);
-  if (partition_.whole()) return add_loads(t, r, fem::assemble_internal(space, problem_.cell_material, u, r, nullptr));
-  // Each rank integrates its own cells; the sum is the whole residual on every rank.
-  auto status = fem::assemble_internal(space, problem_.cell_material, u, r, nullptr, &partition_.owned_cells);
-  fem::sum_over_ranks(layout_.comm(), r);
+  r.fill(0.0);
+  if (partition_.whole()) {
+    const auto status = fem::assemble_internal(space, problem_.cell_material, u, r.view(), nullptr);
+    add_loads(t, r.view());
+    return status;
+  }
+  // Each rank integrates the cells that reach its owned rows (DofLayout::row_cells), so
+  // those rows are complete; the rows of its ghosts are partial and never read.
+  auto status = fem::assemble_internal(space, problem_.cell_material, u, r.view(), nullptr, &layout_.row_cells());
+  add_loads(t, r.view());
   status.inverted_cell = fem::first_cell_over_ranks(layout_.comm(), status.inverted_cell);
   status.folded_cell = fem::first_cell_over_ranks(layout_.comm(), status.folded_cell);
   struct {
@@ -113,30 +135,48 @@ fem::InternalForceStatus QuasiStaticSolver::residual(double t, fem::StateView u,
   } smallest{status.min_det_f, status.min_det_f_cell};
   MPI_Allreduce(MPI_IN_PLACE, &smallest, 1, MPI_DOUBLE_INT, MPI_MINLOC, layout_.comm());
   status.min_det_f = smallest.value, status.min_det_f_cell = smallest.cell;
-  return add_loads(t, r, status);
+  return status;
 }
 
-fem::InternalForceStatus QuasiStaticSolver::add_loads(double t, std::vector<double>& r,
-                                                      fem::InternalForceStatus status) const {
+void QuasiStaticSolver::add_loads(double t, fem::ResidualView r) const {
   const fem::FieldSpace& space = *problem_.space;
   if (problem_.body_force)
     fem::subtract_body_force(space, [&](const double* X, double* out) { problem_.body_force(X, t, out); }, r);
   for (const auto& load : problem_.tractions)
     fem::subtract_traction(space, load.facet_tag, [&](const double* X, double* out) { load.value(X, t, out); }, r);
-  return status;
 }
 
 fem::InternalForceStatus QuasiStaticSolver::evaluate(double t, fem::StateView u,
                                                      const std::vector<double>& lambda, Residuals& r) const {
   const fem::InternalForceStatus status = residual(t, u, r.elastic);
   r.u = r.elastic;
-  constraints_.evaluate(t, u, lambda, r.u, r.c);
+  if (layout_.identity()) {
+    constraints_.evaluate(t, u, lambda, r.u.view(), r.c);
+    return status;
+  }
+  // Each process adds its share of the contact forces, on owned and ghost rows alike; the
+  // shares are summed into the owners' rows.
+  contact_share_.fill(0.0);
+  constraints_.evaluate(t, u, lambda, contact_share_.view(), r.c);
+  contact_share_.add_ghosts_to_owners();
+  const fem::StateView share = std::as_const(contact_share_).view();
+  fem::ResidualView ru = r.u.view();
+  for (PetscInt j = 0; j < layout_.n_owned(); ++j) {
+    const PetscInt a = layout_.app_of_owned(j);
+    if (a < problem_.space->n_dofs()) ru[a] += share[a];
+  }
   return status;
 }
 
 std::map<std::string, std::array<double, 3>> QuasiStaticSolver::surface_forces() const {
   std::map<std::string, std::array<double, 3>> out;
-  const auto force = [&](int tag) { return fem::boundary_force(*problem_.space, problem_.cell_material, u_, tag); };
+  const auto force = [&](int tag) {
+    if (layout_.identity()) return fem::boundary_force(*problem_.space, problem_.cell_material, u_.view(), tag);
+    const auto mine = fem::boundary_force(*problem_.space, problem_.cell_material, u_.view(), tag, &layout_);
+    std::vector<double> sum(mine.begin(), mine.end());
+    fem::sum_over_ranks(layout_.comm(), sum);
+    return std::array<double, 3>{sum[0], sum[1], sum[2]};
+  };
   for (const auto& bc : problem_.dirichlet) out[bc.name] = force(bc.facet_tag);
   for (const auto* c : problem_.constraints)
     for (const auto& [role, tag] : c->surfaces()) out[c->name() + "/" + role] = force(tag);
@@ -147,39 +187,51 @@ void QuasiStaticSolver::assemble_system(const Residuals& r, bool lift) {
   // A contact system is a new matrix every iteration: the solver's set-up on the last one
   // is freed first, or it would be held while the next one is built.
   if (!constraints_.empty()) linear_.release();
-  builder_.assemble(target_time_, u_, lambda_, r.u, r.c, constraints_, lifting_, lift);
+  force_scratch_.fill(0.0);
+  builder_.assemble(target_time_, u_.view(), lambda_, std::as_const(r.u).view(), r.c, constraints_, lifting_, lift,
+                    force_scratch_.view());
 }
 
 void QuasiStaticSolver::report_state_changes(int step, int iteration, double t, const std::vector<char>& before) const {
-  constraints_.visit_changes(before, t, u_, lambda_,
+  constraints_.visit_changes(before, t, u_.view(), lambda_,
                              [&](const MultiplierConstraint& c, int node, char was, const MultiplierNode& now) {
                                state_observer_({step, iteration, c.name(), node, was, now});
                              });
 }
 
-void QuasiStaticSolver::split_update(Vec du, std::vector<double>& dv, std::vector<double>& dl) const {
-  std::vector<double> whole;
-  layout_.gather(du, whole);
-  std::copy(whole.begin(), whole.begin() + dv.size(), dv.begin());
-  std::copy(whole.begin() + dv.size(), whole.begin() + dv.size() + dl.size(), dl.begin());
+// du's owned entries go to dv's (then its ghosts), its multiplier entries to dl on every
+// process (the multipliers are whole everywhere; a few percent of the unknowns).
+void QuasiStaticSolver::split_update(Vec du, fem::GhostedVector& dv, std::vector<double>& dl) const {
+  STICTION_PETSC(VecCopy(du, dv.vec()));
+  dv.update_ghosts();
+  const PetscInt n_u = problem_.space->n_dofs();
+  std::fill(dl.begin(), dl.end(), 0.0);
+  const fem::StateView v = std::as_const(dv).view();
+  for (PetscInt j = 0; j < layout_.n_owned(); ++j)
+    if (const PetscInt a = layout_.app_of_owned(j); a >= n_u) dl[a - n_u] = v[a];
+  if (!layout_.identity()) fem::sum_over_ranks(layout_.comm(), dl);
 }
 
-QuasiStaticSolver::TrialStep QuasiStaticSolver::take_step(double t_target, const std::vector<double>& dv,
+QuasiStaticSolver::TrialStep QuasiStaticSolver::take_step(double t_target, const fem::GhostedVector& dv,
                                                           const std::vector<double>& dl, Residuals& rt) {
   // Backtracking: halve the step while the trial state inverts a cell or is not finite.
   TrialStep t;
-  std::vector<double> trial, trial_lambda;
+  fem::GhostedVector trial(pattern_);
+  std::vector<double> trial_lambda;
   for (int bt = 0;; ++bt) {
     trial = u_;
     trial_lambda = lambda_;
-    for (size_t i = 0; i < dv.size(); ++i) trial[i] += t.alpha * dv[i];
+    // Every held entry, ghosts included: the same sum as the owner's.
+    const std::span<double> x = trial.view().storage();
+    const std::span<const double> d = dv.view().storage();
+    for (size_t i = 0; i < x.size(); ++i) x[i] += t.alpha * d[i];
     for (size_t i = 0; i < dl.size(); ++i) trial_lambda[i] += t.alpha * dl[i];
     if (t.alpha == 1)
-      lifting_.impose(trial);  // exact, free of round-off
+      lifting_.impose(trial.view());  // exact, free of round-off
     const auto t0 = std::chrono::steady_clock::now();
-    const auto st = evaluate(t_target, trial, trial_lambda, rt);
+    const auto st = evaluate(t_target, std::as_const(trial).view(), trial_lambda, rt);
     t.assembly_seconds += seconds_since(t0);
-    const double norm = std::hypot(lifting_.free_norm(rt.u), l2_norm(rt.c));
+    const double norm = std::hypot(lifting_.free_norm(layout_, rt.u.view()), l2_norm(rt.c));
     t.status = st;
     if (st.inverted_cell < 0 && std::isfinite(norm)) break;
     if (bt == settings_.max_backtracks) {
@@ -189,15 +241,17 @@ QuasiStaticSolver::TrialStep QuasiStaticSolver::take_step(double t_target, const
     }
     t.alpha *= 0.5;
   }
-  u_.swap(trial);
+  u_ = trial;
   lambda_.swap(trial_lambda);
   return t;
 }
 
 double QuasiStaticSolver::contact_force_norm(const Residuals& r) const {
-  std::vector<double> contact_force(r.u.size());
-  for (size_t i = 0; i < r.u.size(); ++i) contact_force[i] = r.u[i] - r.elastic[i];
-  return lifting_.free_norm(contact_force);
+  fem::GhostedVector contact_force(r.u);
+  const std::span<double> f = contact_force.view().storage();
+  const std::span<const double> elastic = r.elastic.view().storage();
+  for (size_t i = 0; i < f.size(); ++i) f[i] -= elastic[i];
+  return lifting_.free_norm(layout_, std::as_const(contact_force).view());
 }
 
 // Predictor (choice): while some node is in contact, the first solve of a step keeps the
@@ -212,8 +266,8 @@ double QuasiStaticSolver::contact_force_norm(const Residuals& r) const {
 int QuasiStaticSolver::first_states(int step, double t, Residuals& r) {
   if (!constraints_.all_free()) return 0;
   const std::vector<char> before = constraints_.states();
-  const int changes = constraints_.update_states(t, u_, lambda_, std::vector<double>(lambda_.size(), 0.0));
-  if (changes > 0) constraints_.evaluate_rows(t, u_, lambda_, r.c);
+  const int changes = constraints_.update_states(t, u_.view(), lambda_, std::vector<double>(lambda_.size(), 0.0));
+  if (changes > 0) constraints_.evaluate_rows(t, u_.view(), lambda_, r.c);
   if (changes > 0 && state_observer_) report_state_changes(step, 0, t, before);
   return changes;
 }
@@ -223,7 +277,7 @@ QuasiStaticSolver::StateUpdate QuasiStaticSolver::update_states(int step, int it
                                                                 double c_reference, ActiveSetMonitor& monitor,
                                                                 Residuals& r) {
   StateUpdate out;
-  const double r_free = lifting_.free_norm(r.u), r_c = l2_norm(r.c);
+  const double r_free = lifting_.free_norm(layout_, r.u.view()), r_c = l2_norm(r.c);
   const bool converged_now = r_free <= std::max(settings_.atol, settings_.rtol * reference) &&
                              r_c <= std::max(settings_.atol, settings_.rtol * c_reference);
   const double progress = std::max(r_free / reference, r_c / std::max(c_reference, settings_.atol));
@@ -233,12 +287,12 @@ QuasiStaticSolver::StateUpdate QuasiStaticSolver::update_states(int step, int it
     return out;
   }
   const std::vector<char> before = constraints_.states();
-  out.changes = constraints_.update_states(t, u_, lambda_, dl);
+  out.changes = constraints_.update_states(t, u_.view(), lambda_, dl);
   if (out.changes > 0) {
     if (state_observer_) report_state_changes(step, iteration, t, before);
-    constraints_.evaluate_rows(t, u_, lambda_, r.c);
-    out.verdict =
-        monitor.after_update(before, constraints_.states(), r_free + r_c, lifting_.free_norm(r.u) + l2_norm(r.c));
+    constraints_.evaluate_rows(t, u_.view(), lambda_, r.c);
+    out.verdict = monitor.after_update(before, constraints_.states(), r_free + r_c,
+                                       lifting_.free_norm(layout_, r.u.view()) + l2_norm(r.c));
   }
   return out;
 }
@@ -257,17 +311,16 @@ StepResult QuasiStaticSolver::solve_step(int step) {
 
 StepResult QuasiStaticSolver::solve_increment(int step, double t) {
   const auto t_step = std::chrono::steady_clock::now();
-  const size_t n_u = problem_.space->n_dofs();
   StepResult res;
   res.step = step;
   res.time = t;
   target_time_ = t;
-  constraints_.begin_increment(time_, u_);
+  constraints_.begin_increment(time_, u_.view());
   lifting_.set_targets(t);
 
-  Residuals r, rt;
+  Residuals r(pattern_), rt(pattern_);
   auto t0 = std::chrono::steady_clock::now();
-  const auto st0 = evaluate(t, u_, lambda_, r);
+  const auto st0 = evaluate(t, u_.view(), lambda_, r);
   double asm_seconds = seconds_since(t0);
   if (st0.inverted_cell >= 0)
     throw Error(fmt::format("load step {}: {} is inverted at the start of the step", step, describe_cell(st0.inverted_cell)),
@@ -283,13 +336,13 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
   // the increment fails and is cut (before, such a state was converged to at t = 1.49, and
   // Newton stalled in the next step on the contact projections of the looped facet).
   fem::InternalForceStatus accepted = st0;  // of the current iterate
-  double rnorm = lifting_.free_norm(r.u), cnorm = l2_norm(r.c), c_reference = cnorm;
+  double rnorm = lifting_.free_norm(layout_, r.u.view()), cnorm = l2_norm(r.c), c_reference = cnorm;
   res.initial_residual = res.reference_residual = res.final_residual = rnorm;
   auto finish = [&](NewtonReason why) {
     res.reason = why;
     res.final_residual = rnorm;
     if (res.converged()) {
-      res.reactions = lifting_.reactions(r.u);
+      res.reactions = lifting_.reactions(layout_, r.u.view());
       res.min_det_f = accepted.min_det_f;
       res.surface_forces = surface_forces();
       res.contact = constraints_.summaries(lambda_);
@@ -317,7 +370,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
   // iterate, and a ratio of displacement residuals would then stay infinite.
   double eta = 0, rhs_prev = 0;
   for (int it = 0;; ++it) {
-    const bool pending = lifting_.pending(u_);
+    const bool pending = lifting_.pending(layout_, u_.view());
     const double tol = std::max(settings_.atol, settings_.rtol * res.reference_residual);
     const bool constraints_ok =
         states_checked && last_changes == 0 && cnorm <= std::max(settings_.atol, settings_.rtol * c_reference);
@@ -381,7 +434,8 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
         res.detail += fmt::format(" (also when continued with a restart of {:g})", k->second);
       return finish(NewtonReason::DivergedLinearSolver);
     }
-    std::vector<double> dv(n_u), dl(lambda_.size());
+    fem::GhostedVector dv(pattern_);
+    std::vector<double> dl(lambda_.size());
     split_update(du, dv, dl);
     const TrialStep trial = take_step(t, dv, dl, rt);
     asm_seconds = trial.assembly_seconds;
@@ -406,7 +460,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
       // Contact carries the load of a displacement-driven master: its forces set the scale.
       res.reference_residual = std::max(res.reference_residual, contact_force_norm(r));
     }
-    rnorm = lifting_.free_norm(r.u);
+    rnorm = lifting_.free_norm(layout_, r.u.view());
     cnorm = l2_norm(r.c);
     rec.residual = rnorm;
     rec.constraint_residual = cnorm;
@@ -428,23 +482,41 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
 }
 
 QuasiStaticSolver::State QuasiStaticSolver::state() const {
-  State s{completed_step_, time_, u_, lambda_, {}};
+  State s{completed_step_, time_, displacement(), lambda_, {}};
   s.constraints = constraints_.save_state();
   return s;
 }
 
+std::vector<double> QuasiStaticSolver::displacement() const {
+  std::vector<double> u = u_.whole();
+  u.resize(static_cast<size_t>(problem_.space->n_dofs()));
+  return u;
+}
+
+QuasiStaticSolver::Snapshot QuasiStaticSolver::snapshot() const {
+  return {completed_step_, time_, u_, lambda_, constraints_.save_state()};
+}
+
+void QuasiStaticSolver::restore(const Snapshot& s) {
+  constraints_.restore_state(s.constraints);
+  u_ = s.u;
+  lambda_ = s.lambda;
+  time_ = s.time;
+  completed_step_ = s.step;
+}
+
 void QuasiStaticSolver::restore(const State& s) {
-  if (s.u.size() != u_.size() || s.lambda.size() != lambda_.size() ||
-      s.constraints.size() != constraints_.size())
+  const auto n_u = static_cast<size_t>(problem_.space->n_dofs());
+  if (s.u.size() != n_u || s.lambda.size() != lambda_.size() || s.constraints.size() != constraints_.size())
     throw Error(fmt::format("a saved state of {} displacement unknowns, {} multipliers and {} constraints does not fit "
                             "this problem ({}, {}, {})",
-                            s.u.size(), s.lambda.size(), s.constraints.size(), u_.size(), lambda_.size(),
+                            s.u.size(), s.lambda.size(), s.constraints.size(), n_u, lambda_.size(),
                             constraints_.size()));
   if (s.step < 0 || s.step > problem_.n_steps())
     throw Error(fmt::format("a saved state at load step {} does not fit a problem of {} steps", s.step,
                             problem_.n_steps()));
   constraints_.restore_state(s.constraints);
-  u_ = s.u;
+  u_.assign_whole(s.u);
   lambda_ = s.lambda;
   time_ = s.time;
   completed_step_ = s.step;
@@ -499,7 +571,7 @@ std::vector<StepResult> QuasiStaticSolver::run(const std::function<void(const St
     for (;;) {
       // The last part lands exactly on the step's end (no sliver left by round-off).
       const double t = time_ + increment >= t_end - 1e-9 * full ? t_end : time_ + increment;
-      const State saved = state();
+      const Snapshot saved = snapshot();
       StepResult r = solve_increment(k, t);
       r.cut = cut;
       tally_.solves += static_cast<int>(r.iterations.size());

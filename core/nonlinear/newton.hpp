@@ -5,11 +5,15 @@
 // (constraint_set.hpp), the system each iteration hands to the backend (system_builder.hpp)
 // and the gate on contact-state updates (active_set_monitor.hpp); this file is the loop.
 //
-// On several MPI processes (comm) each holds the whole mesh and the whole Newton state
-// (u, lambda, contact states) and takes every decision alike; what is divided is the work
-// of the cells (fem::MeshPartition: each process assembles its own, the residual is summed
-// over processes) and the Newton system, which the backend solves distributed
-// (fem::DofLayout's numbering); the increment is gathered back to every process.
+// On several MPI processes (comm) each holds the whole mesh, the multipliers and the
+// contact states, and of the displacement (and pressure) state only its owned unknowns and
+// the ghosts it reads (fem::GhostedVector: the nodes of the cells that reach its owned rows,
+// and of the contact surfaces). Each process assembles those cells, so its owned rows of the
+// residual are complete; the contact forces are summed into their owners' rows; the norms
+// every decision reads are reduced over processes to the same bits everywhere, so every
+// process takes every decision alike. The backend solves the Newton system distributed
+// (fem::DofLayout's numbering), each process takes its owned part of the increment, and the
+// ghosts are updated from their owners.
 //
 // Convergence: ||r_free|| <= max(atol, rtol * r_ref), where r_ref is the larger of the
 // step's initial free residual and the right side of its first (lifted) system, i.e. the
@@ -42,6 +46,7 @@
 #include "fem/app_view.hpp"
 #include "fem/dof_layout.hpp"
 #include "fem/elasticity_assembly.hpp"
+#include "fem/ghosted_vector.hpp"
 #include "fem/mesh_partition.hpp"
 #include "nonlinear/active_set_monitor.hpp"
 #include "nonlinear/constraint_set.hpp"
@@ -157,7 +162,8 @@ public:
   std::vector<StepResult> run(const std::function<void(const StepResult&)>& on_step = {}, int first_step = 1,
                               int last_step = -1);
 
-  // What a converged state carries into the next increment: the retry point of a cut-back.
+  // What a converged state carries into the next increment, whole (u gathered in app order
+  // on every process): what a checkpoint keeps. state() is collective.
   struct State {
     int step = 0;      // the last load step completed
     double time = 0;   // its pseudo-time (or of the last converged part of the next step)
@@ -186,12 +192,11 @@ public:
   const CutBack& cut_back() const { return cut_back_; }
   void set_cut_back(const CutBack& c) { cut_back_ = c; }
 
-  const std::vector<double>& displacement() const { return u_; }
-  std::vector<double>& displacement() { return u_; }
+  // The displacement (and pressure) state, whole in app order, on every process (gathered
+  // on several: every process must call it).
+  std::vector<double> displacement() const;
   // Contact multipliers of every constraint, in order (empty without contact).
   const std::vector<double>& multipliers() const { return lambda_; }
-  // Full residual r(u) = f_int - f_ext at pseudo-time t (constrained rows included), and status.
-  fem::InternalForceStatus residual(double t, fem::StateView u, std::vector<double>& r) const;
   // The last assembled Newton system (for record/replay and tests), in layout()'s numbering.
   const NewtonSystem& system() const { return builder_.system(); }
   Mat tangent_beside_system() const { return builder_.tangent_beside_system(); }
@@ -221,11 +226,27 @@ public:
 
 private:
   struct Residuals;
-  // residual's dead loads (body force, tractions), added once the cells are summed.
-  fem::InternalForceStatus add_loads(double t, std::vector<double>& r, fem::InternalForceStatus status) const;
+  // The unknowns this process reads besides its own: the nodes of its row cells and of
+  // every constraint's surfaces.
+  std::vector<PetscInt> unknowns_read() const;
+  // The residual r(u) = f_int - f_ext at pseudo-time t (constrained rows included; on
+  // several processes complete in the owned rows only), and the status over every process.
+  fem::InternalForceStatus residual(double t, fem::StateView u, fem::GhostedVector& r) const;
+  // residual's dead loads (body force, tractions).
+  void add_loads(double t, fem::ResidualView r) const;
   // Elastic part and constraint part of the residual at (u, lambda).
   fem::InternalForceStatus evaluate(double t, fem::StateView u, const std::vector<double>& lambda,
                                     Residuals& r) const;
+  // The retry point of a cut-back: the converged state as this process holds it.
+  struct Snapshot {
+    int step = 0;
+    double time = 0;
+    fem::GhostedVector u;
+    std::vector<double> lambda;
+    std::vector<std::vector<double>> constraints;
+  };
+  Snapshot snapshot() const;
+  void restore(const Snapshot& s);
   // The system at the current iterate for its residual r (the backend's old set-up released first).
   void assemble_system(const Residuals& r, bool lift);
   // The step predictor's states when no node is in contact (see solve_increment).
@@ -255,8 +276,8 @@ private:
     bool failed = false;
     NewtonReason failure = NewtonReason::DivergedNaN;  // when failed
   };
-  void split_update(Vec du, std::vector<double>& dv, std::vector<double>& dl) const;
-  TrialStep take_step(double t, const std::vector<double>& dv, const std::vector<double>& dl, Residuals& rt);
+  void split_update(Vec du, fem::GhostedVector& dv, std::vector<double>& dl) const;
+  TrialStep take_step(double t, const fem::GhostedVector& dv, const std::vector<double>& dl, Residuals& rt);
   double contact_force_norm(const Residuals& r) const;
   std::string describe_cell(int c) const { return mesh::describe_cell(problem_.space->mesh(), c); }
   std::map<std::string, std::array<double, 3>> surface_forces() const;
@@ -269,8 +290,12 @@ private:
   fem::MeshPartition partition_;  // the cells this rank assembles
   fem::DofLayout layout_;         // the Newton system's numbering across ranks
   NewtonSystemBuilder builder_;
-  std::vector<double> u_;
-  std::vector<double> lambda_;  // contact multipliers (augmented unknowns n_u..)
+  std::shared_ptr<const fem::GhostPattern> pattern_;  // what this process holds of u
+  fem::GhostedVector u_;
+  std::vector<double> lambda_;  // contact multipliers (augmented unknowns n_u..), whole
+  // Each process's share of the contact forces before they are summed into their owners'
+  // rows (several processes), and the forces the Jacobian's evaluation writes, unused.
+  mutable fem::GhostedVector contact_share_, force_scratch_;
   LinearTally tally_;
   CutBack cut_back_;
   double time_ = 0;             // pseudo-time of the current converged state

@@ -108,30 +108,36 @@ void NewtonSystemBuilder::add_field(const char* name, std::pair<int, int> range,
   system_.fields.push_back(std::move(f));
 }
 
-void NewtonSystemBuilder::assemble(double t, fem::StateView u, const std::vector<double>& lambda,
-                                   const std::vector<double>& r_u, const std::vector<double>& r_c,
-                                   const ConstraintSet& constraints, const DirichletLifting& lifting, bool lift) {
+void NewtonSystemBuilder::assemble(double t, fem::StateView u, const std::vector<double>& lambda, fem::StateView r_u,
+                                   const std::vector<double>& r_c, const ConstraintSet& constraints,
+                                   const DirichletLifting& lifting, bool lift, fem::ResidualView force_scratch) {
   if (!constraints.empty()) system_.matrix.reset();  // the caller released the backend's set-up on it
   stiffness_->begin_assembly();
   fem::assemble_internal(*problem_.space, problem_.cell_material, u, {}, stiffness_.get(),
                          &layout_.row_cells());
   stiffness_->end_assembly();
-  if (!constraints.empty()) border_with_constraints(t, u, lambda, constraints);
-  std::vector<double> b(r_u.size() + r_c.size());
-  for (size_t i = 0; i < r_u.size(); ++i) b[i] = -r_u[i];
-  for (size_t i = 0; i < r_c.size(); ++i) b[r_u.size() + i] = -r_c[i];
-  layout_.scatter(b, system_.rhs);
+  if (!constraints.empty()) border_with_constraints(t, u, lambda, force_scratch, constraints);
+  // The right side -r on the owned rows: displacement (and pressure) rows, then multipliers.
+  const PetscInt n_u = problem_.space->n_dofs();
+  PetscScalar* b;
+  STICTION_PETSC(VecGetArray(system_.rhs, &b));
+  for (PetscInt j = 0; j < layout_.n_owned(); ++j) {
+    const PetscInt a = layout_.app_of_owned(j);
+    b[j] = a < n_u ? -r_u[a] : -r_c[a - n_u];
+  }
+  STICTION_PETSC(VecRestoreArray(system_.rhs, &b));
   lifting.apply(layout_, system_.matrix, system_.rhs, u, lift);
 }
 
 // The augmented matrix (30): the tangent bordered by -B^T, C_u and C_lambda, and the
 // multiplier surface the contact preconditioner reads.
-void NewtonSystemBuilder::border_with_constraints(double t, fem::StateView u,
-                                                  const std::vector<double>& lambda, const ConstraintSet& constraints) {
+void NewtonSystemBuilder::border_with_constraints(double t, fem::StateView u, const std::vector<double>& lambda,
+                                                  fem::ResidualView force_scratch,
+                                                  const ConstraintSet& constraints) {
   const PetscInt n_u = problem_.space->n_dofs(), m = constraints.n_multipliers();
   SparseEntries blocks;
-  std::vector<double> scratch_u(n_u), scratch_c;
-  constraints.evaluate(t, u, lambda, scratch_u, scratch_c, &blocks, n_u);
+  std::vector<double> scratch_c;
+  constraints.evaluate(t, u, lambda, force_scratch, scratch_c, &blocks, n_u);
   if (stiffness_->distributed()) {
     *system_.matrix.out() =
         build_distributed_augmented_matrix(stiffness_->mat(), layout_, n_u, blocks, stiffness_->block_size());

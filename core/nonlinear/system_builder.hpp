@@ -30,11 +30,13 @@ class NewtonSystemBuilder {
 public:
   NewtonSystemBuilder(const fem::DofLayout& layout, const ElasticityProblem& problem, PetscInt n_multipliers);
 
-  // The system at (u, lambda) at pseudo-time t for the residual (r_u, r_c) there; with lift,
-  // the constrained dofs' increment to the lifting's targets enters it.
-  void assemble(double t, fem::StateView u, const std::vector<double>& lambda,
-                const std::vector<double>& r_u, const std::vector<double>& r_c, const ConstraintSet& constraints,
-                const DirichletLifting& lifting, bool lift);
+  // The system at (u, lambda) at pseudo-time t for the residual (r_u, r_c) there (each
+  // process reads the rows it owns); with lift, the constrained dofs' increment to the
+  // lifting's targets enters it. force_scratch (shaped like r_u) takes the constraint forces
+  // that the evaluation of their Jacobian writes.
+  void assemble(double t, fem::StateView u, const std::vector<double>& lambda, fem::StateView r_u,
+                const std::vector<double>& r_c, const ConstraintSet& constraints, const DirichletLifting& lifting,
+                bool lift, fem::ResidualView force_scratch);
 
   const NewtonSystem& system() const { return system_; }
   // A tangent matrix alive beside the system's (null when the system's matrix is the tangent
@@ -46,6 +48,7 @@ public:
 private:
   void add_field(const char* name, std::pair<int, int> range, int block_size);
   void border_with_constraints(double t, fem::StateView u, const std::vector<double>& lambda,
+                               fem::ResidualView force_scratch,
                                const ConstraintSet& constraints);
 
   const fem::DofLayout& layout_;

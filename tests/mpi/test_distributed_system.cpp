@@ -184,8 +184,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DistributedSystem,
 // Distributed, each process evaluates the contact of its own slave nodes: the Jacobian
 // entries the processes compute together are the one-process entries, each computed once
 // (summed over the processes, |entries| equals the one-process sum; were every process to
-// evaluate everything, it would be twice that), and every process still gets the whole
-// residual. At the converged state of the scene's short run, where nodes press and slip.
+// evaluate everything, it would be twice that), every process gets the whole constraint
+// rows, and the processes' shares of the forces sum to the whole. At the converged state of the scene's short run, where nodes press and slip.
 class DistributedContact : public ::testing::TestWithParam<const char*> {};
 
 double abs_sum(const nonlinear::SparseEntries& e) {
@@ -208,7 +208,7 @@ TEST_P(DistributedContact, EachProcessComputesItsShareOnce) {
   ASSERT_FALSE(constraints.all_free()) << "no node in contact at the end of the short run";
   const PetscInt n_u = scene->problem.space->n_dofs();
   const double t = steps.back().time;
-  const std::vector<double>& u = newton.displacement();
+  const std::vector<double> u = newton.displacement();
   const std::vector<double>& lambda = newton.multipliers();
 
   auto evaluate = [&](nonlinear::SparseEntries& jacobian, std::vector<double>& r_u, std::vector<double>& r_c) {
@@ -227,6 +227,8 @@ TEST_P(DistributedContact, EachProcessComputesItsShareOnce) {
   long long shared_entries = static_cast<long long>(share.size());
   MPI_Allreduce(MPI_IN_PLACE, &shared_entries, 1, MPI_LONG_LONG, MPI_SUM, PETSC_COMM_WORLD);
   EXPECT_LE(shared_entries, static_cast<long long>(whole.size()));
+  // Each process adds its share of the forces; the shares sum to the whole.
+  MPI_Allreduce(MPI_IN_PLACE, r_u_shared.data(), static_cast<int>(n_u), MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
   EXPECT_LT(max_difference(r_u_shared, r_u_alone), 1e-12 * max_abs(r_u_alone));
   EXPECT_LT(max_difference(r_c_shared, r_c_alone), 1e-12 * std::max(max_abs(r_c_alone), 1e-300));
 }
