@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <span>
 #include <utility>
 
@@ -98,9 +99,7 @@ QuasiStaticSolver::QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& pro
       builder_(layout_, problem, constraints_.n_multipliers()),
       pattern_(std::make_shared<fem::GhostPattern>(layout_, unknowns_read())),
       u_(pattern_),
-      lambda_(constraints_.n_multipliers(), 0.0),
-      contact_share_(pattern_),
-      force_scratch_(pattern_) {
+      lambda_(constraints_.n_multipliers(), 0.0) {
   constraints_.distribute(layout_, problem.space->n_dofs());
 }
 
@@ -156,10 +155,11 @@ fem::InternalForceStatus QuasiStaticSolver::evaluate(double t, fem::StateView u,
   }
   // Each process adds its share of the contact forces, on owned and ghost rows alike; the
   // shares are summed into the owners' rows.
-  contact_share_.fill(0.0);
-  constraints_.evaluate(t, u, lambda, contact_share_.view(), r.c);
-  contact_share_.add_ghosts_to_owners();
-  const fem::StateView share = std::as_const(contact_share_).view();
+  if (!contact_share_) contact_share_ = std::make_unique<fem::GhostedVector>(pattern_);
+  contact_share_->fill(0.0);
+  constraints_.evaluate(t, u, lambda, contact_share_->view(), r.c);
+  contact_share_->add_ghosts_to_owners();
+  const fem::StateView share = std::as_const(*contact_share_).view();
   fem::ResidualView ru = r.u.view();
   for (PetscInt j = 0; j < layout_.n_owned(); ++j) {
     const PetscInt a = layout_.app_of_owned(j);
@@ -187,9 +187,11 @@ void QuasiStaticSolver::assemble_system(const Residuals& r, bool lift) {
   // A contact system is a new matrix every iteration: the solver's set-up on the last one
   // is freed first, or it would be held while the next one is built.
   if (!constraints_.empty()) linear_.release();
-  force_scratch_.fill(0.0);
+  // The constraint forces the evaluation of their Jacobian writes, not read.
+  std::optional<fem::GhostedVector> force_scratch;
+  if (!constraints_.empty()) force_scratch.emplace(pattern_);
   builder_.assemble(target_time_, u_.view(), lambda_, std::as_const(r.u).view(), r.c, constraints_, lifting_, lift,
-                    force_scratch_.view());
+                    force_scratch ? force_scratch->view() : fem::ResidualView());
 }
 
 void QuasiStaticSolver::report_state_changes(int step, int iteration, double t, const std::vector<char>& before) const {

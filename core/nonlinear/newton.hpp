@@ -40,6 +40,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -294,8 +295,8 @@ private:
   fem::GhostedVector u_;
   std::vector<double> lambda_;  // contact multipliers (augmented unknowns n_u..), whole
   // Each process's share of the contact forces before they are summed into their owners'
-  // rows (several processes), and the forces the Jacobian's evaluation writes, unused.
-  mutable fem::GhostedVector contact_share_, force_scratch_;
+  // rows (several processes with contact; made at the first evaluation).
+  mutable std::unique_ptr<fem::GhostedVector> contact_share_;
   LinearTally tally_;
   CutBack cut_back_;
   double time_ = 0;             // pseudo-time of the current converged state
