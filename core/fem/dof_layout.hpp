@@ -1,10 +1,11 @@
 #pragma once
 // The Newton system's numbering across MPI ranks. Its unknowns in stiction's own order
 // (the "app" order: displacement node by node, then pressures, then multipliers) stay the
-// numbering of every std::vector the Newton driver holds, whole on every rank; PETSc's
-// distributed matrix and vectors number them rank by rank instead, each rank's unknowns a
-// contiguous range, in app order within the rank. So on one rank the two numberings are
-// the same, and nothing is permuted.
+// index by which the assembly and the contact code address the state (fem::AppView, over
+// each rank's owned and ghost storage: fem::GhostedVector); PETSc's distributed matrix and
+// vectors number them rank by rank instead, each rank's unknowns a contiguous range, in app
+// order within the rank. So on one rank the two numberings are the same, and nothing is
+// permuted.
 //
 // Ownership: a node belongs to the rank of the first cell (lowest index) that holds it,
 // its pressure and its multipliers follow it (the multiplier rows stay on the rank that

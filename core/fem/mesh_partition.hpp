@@ -1,9 +1,9 @@
 #pragma once
-// Which MPI rank assembles each cell. The mesh itself stays whole on every rank (the
-// surfaces the contact search reads are small next to the volume, and the state vectors
-// are replicated); what is divided is the work and the Newton system's rows: each rank
-// owns the dofs of the nodes its cells reach first (fem::DofLayout), sums the residual
-// over its own cells and assembles its rows of the tangent.
+// Which MPI rank owns each cell. The mesh itself stays whole on every rank (the surfaces
+// the contact search reads are small next to the volume); what is divided is the Newton
+// system's rows and the state: each rank owns the dofs of the nodes its cells reach first
+// (fem::DofLayout), holds those and the ghosts it reads (fem::GhostedVector), and assembles
+// its rows of the residual and the tangent from the cells that reach them.
 //
 // The cells are split by PETSc's MatPartitioning over the dual graph (cells sharing a
 // facet), with PT-Scotch, the graph partitioner Debian's PETSc carries (it has no ParMETIS,
@@ -30,7 +30,7 @@ struct MeshPartition {
 MeshPartition partition_cells(MPI_Comm comm, const mesh::Mesh& mesh);
 
 // The sum over ranks of each rank's v, on every rank (reduced on rank 0 and broadcast, so
-// every rank holds the same bits: the replicated Newton state must not drift apart).
+// every rank holds the same bits: every rank must take the Newton driver's decisions alike).
 void sum_over_ranks(MPI_Comm comm, std::vector<double>& v);
 double sum_over_ranks(MPI_Comm comm, double v);
 // The smallest of each rank's cell index c >= 0, or -1 when no rank has one.
