@@ -23,33 +23,33 @@ GhostPattern::GhostPattern(const DofLayout& layout, const std::vector<PetscInt>&
 }
 
 GhostedVector::GhostedVector(std::shared_ptr<const GhostPattern> pattern)
-    : pattern_(std::move(pattern)), storage_(static_cast<size_t>(pattern_->n_stored()), 0.0) {
-  create_vec();
-}
+    : pattern_(std::move(pattern)), storage_(static_cast<size_t>(pattern_->n_stored()), 0.0) {}
 
-GhostedVector::GhostedVector(const GhostedVector& other) : pattern_(other.pattern_), storage_(other.storage_) {
-  create_vec();
-}
+GhostedVector::GhostedVector(const GhostedVector& other) : pattern_(other.pattern_), storage_(other.storage_) {}
 
 GhostedVector& GhostedVector::operator=(const GhostedVector& other) {
   if (this == &other) return *this;
   if (pattern_ == other.pattern_) {
-    std::copy(other.storage_.begin(), other.storage_.end(), storage_.begin());  // the Vec wraps storage_
+    std::copy(other.storage_.begin(), other.storage_.end(), storage_.begin());  // a Vec wraps storage_
     return *this;
   }
   pattern_ = other.pattern_;
   storage_ = other.storage_;
-  create_vec();
+  vec_.reset();
   return *this;
 }
 
-void GhostedVector::create_vec() {
+// Made on first use: a ghosted Vec carries its own ghost scatter (on several processes a
+// tenth of the vector's size again), and most of the Newton driver's vectors are never
+// scattered.
+Vec GhostedVector::vec() const {
+  if (vec_) return vec_;
   const DofLayout& layout = pattern_->layout();
   const auto& ghosts = pattern_->ghost_global_;
-  vec_.reset();
   STICTION_PETSC(VecCreateGhostWithArray(layout.comm(), layout.n_owned(), layout.n_total(),
-                                         static_cast<PetscInt>(ghosts.size()), ghosts.data(), storage_.data(),
-                                         vec_.out()));
+                                         static_cast<PetscInt>(ghosts.size()), ghosts.data(),
+                                         const_cast<double*>(storage_.data()), vec_.out()));
+  return vec_;
 }
 
 StateView GhostedVector::view() const {
@@ -66,14 +66,14 @@ ResidualView GhostedVector::view() {
 
 void GhostedVector::update_ghosts() {
   if (pattern_->layout().identity()) return;
-  STICTION_PETSC(VecGhostUpdateBegin(vec_, INSERT_VALUES, SCATTER_FORWARD));
-  STICTION_PETSC(VecGhostUpdateEnd(vec_, INSERT_VALUES, SCATTER_FORWARD));
+  STICTION_PETSC(VecGhostUpdateBegin(vec(), INSERT_VALUES, SCATTER_FORWARD));
+  STICTION_PETSC(VecGhostUpdateEnd(vec(), INSERT_VALUES, SCATTER_FORWARD));
 }
 
 void GhostedVector::add_ghosts_to_owners() {
   if (pattern_->layout().identity()) return;
-  STICTION_PETSC(VecGhostUpdateBegin(vec_, ADD_VALUES, SCATTER_REVERSE));
-  STICTION_PETSC(VecGhostUpdateEnd(vec_, ADD_VALUES, SCATTER_REVERSE));
+  STICTION_PETSC(VecGhostUpdateBegin(vec(), ADD_VALUES, SCATTER_REVERSE));
+  STICTION_PETSC(VecGhostUpdateEnd(vec(), ADD_VALUES, SCATTER_REVERSE));
 }
 
 void GhostedVector::assign_whole(const std::vector<double>& whole) {
@@ -88,7 +88,7 @@ void GhostedVector::assign_whole(const std::vector<double>& whole) {
 
 std::vector<double> GhostedVector::whole() const {
   std::vector<double> out;
-  pattern_->layout().gather(vec_, out);
+  pattern_->layout().gather(vec(), out);
   return out;
 }
 

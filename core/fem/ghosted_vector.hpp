@@ -51,8 +51,9 @@ public:
   const GhostPattern& pattern() const { return *pattern_; }
   StateView view() const;
   ResidualView view();
-  // The owned entries as a distributed PETSc vector (the ghosts are its local form's tail).
-  Vec vec() const { return vec_; }
+  // The owned entries as a distributed PETSc vector over this storage (the ghosts are its
+  // local form's tail); writing through it writes the storage.
+  Vec vec() const;
 
   // Each ghost takes its owner's value.
   void update_ghosts();
@@ -65,10 +66,9 @@ public:
   void fill(double value);
 
 private:
-  void create_vec();
   std::shared_ptr<const GhostPattern> pattern_;
   std::vector<double> storage_;
-  PetscVec vec_;
+  mutable PetscVec vec_;
 };
 
 // The app unknowns of the nodes of the given cells (displacements of every node, the
