@@ -70,12 +70,16 @@ void DofLayout::gather(Vec v, std::vector<double>& values) const {
     STICTION_PETSC(VecRestoreArrayRead(v, &a));
     return;
   }
-  if (!to_all_) STICTION_PETSC(VecScatterCreateToAll(v, to_all_.out(), whole_.out()));
-  STICTION_PETSC(VecScatterBegin(to_all_, v, whole_, INSERT_VALUES, SCATTER_FORWARD));
-  STICTION_PETSC(VecScatterEnd(to_all_, v, whole_, INSERT_VALUES, SCATTER_FORWARD));
-  STICTION_PETSC(VecGetArrayRead(whole_, &a));
+  // Made for each call and freed after it: kept, the scatter and its whole-size vector
+  // would stay on every process between the output steps that gather.
+  PetscOwner<VecScatter, VecScatterDestroy> to_all;
+  PetscVec whole;
+  STICTION_PETSC(VecScatterCreateToAll(v, to_all.out(), whole.out()));
+  STICTION_PETSC(VecScatterBegin(to_all, v, whole, INSERT_VALUES, SCATTER_FORWARD));
+  STICTION_PETSC(VecScatterEnd(to_all, v, whole, INSERT_VALUES, SCATTER_FORWARD));
+  STICTION_PETSC(VecGetArrayRead(whole, &a));
   for (PetscInt k = 0; k < n_total_; ++k) values[k] = a[global_[k]];
-  STICTION_PETSC(VecRestoreArrayRead(whole_, &a));
+  STICTION_PETSC(VecRestoreArrayRead(whole, &a));
 }
 
 std::vector<PetscInt> DofLayout::owned_indices(PetscInt first, PetscInt last) const {

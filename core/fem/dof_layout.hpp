@@ -66,8 +66,6 @@ private:
   std::vector<PetscInt> global_;   // per app unknown (empty on one rank)
   std::vector<PetscInt> owned_app_;  // app index of each owned unknown, in PETSc order (several ranks)
   std::vector<int> row_cells_;
-  mutable PetscOwner<VecScatter, VecScatterDestroy> to_all_;
-  mutable PetscVec whole_;
 };
 
 }  // namespace stiction::fem
