@@ -30,14 +30,12 @@ public:
   // Storage index of every app unknown, -1 where not held (empty on one process: the
   // storage index is the app index).
   const std::vector<int>& storage_of_app() const { return storage_of_app_; }
-  // The ghosts' app indices, ascending (storage n_owned() + g holds ghost g).
-  const std::vector<PetscInt>& ghost_app() const { return ghost_app_; }
   bool holds(PetscInt app) const { return storage_of_app_.empty() || storage_of_app_[app] >= 0; }
 
 private:
   const DofLayout* layout_;
   std::vector<int> storage_of_app_;
-  std::vector<PetscInt> ghost_app_;
+  std::vector<PetscInt> ghost_app_;     // ascending: storage n_owned() + g holds ghost g
   std::vector<PetscInt> ghost_global_;
   friend class GhostedVector;
 };
