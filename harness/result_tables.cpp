@@ -105,7 +105,7 @@ void StepTable::add(const nonlinear::StepResult& r, const scene::Scene& s) {
 }
 
 std::vector<std::pair<std::string, std::vector<nonlinear::MultiplierNode>>> multiplier_nodes(
-    const scene::Scene& s, double t, const std::vector<double>& u, const std::vector<double>& lambda) {
+    const scene::Scene& s, double t, fem::StateView u, const std::vector<double>& lambda) {
   std::vector<std::pair<std::string, std::vector<nonlinear::MultiplierNode>>> out;
   size_t offset = 0;
   for (const auto* c : s.problem.constraints) {
@@ -130,7 +130,7 @@ ContactTable::ContactTable(const std::string& path, const std::string& header_co
   out_.flush();
 }
 
-void ContactTable::add(const nonlinear::StepResult& r, const scene::Scene& s, const std::vector<double>& u,
+void ContactTable::add(const nonlinear::StepResult& r, const scene::Scene& s, fem::StateView u,
                        const std::vector<double>& lambda) {
   for (const auto& [pair, nodes] : multiplier_nodes(s, r.time, u, lambda))
     for (size_t i = 0; i < nodes.size(); ++i) {

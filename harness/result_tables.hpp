@@ -26,8 +26,8 @@ private:
 class ContactTable {
 public:
   ContactTable(const std::string& path, const std::string& header_comment, int dim, bool append = false);
-  void add(const nonlinear::StepResult& r, const scene::Scene& s, const std::vector<double>& u,
-           const std::vector<double>& lambda);
+  // u need hold the contact surfaces' unknowns only (any process's ghosted storage does).
+  void add(const nonlinear::StepResult& r, const scene::Scene& s, fem::StateView u, const std::vector<double>& lambda);
 
 private:
   std::ofstream out_;
@@ -36,7 +36,7 @@ private:
 
 // The multiplier nodes of every constraint of s at (t, u, lambda), with each one's name.
 std::vector<std::pair<std::string, std::vector<nonlinear::MultiplierNode>>> multiplier_nodes(
-    const scene::Scene& s, double t, const std::vector<double>& u, const std::vector<double>& lambda);
+    const scene::Scene& s, double t, fem::StateView u, const std::vector<double>& lambda);
 
 class IterationTable {
 public:

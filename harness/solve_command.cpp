@@ -42,8 +42,8 @@ void print_state_change(const nonlinear::QuasiStaticSolver::StateChange& c) {
 
 void run_solve(const SolveOptions& o, const RunInfo& info) {
   const auto t_start = std::chrono::steady_clock::now();
-  // On several MPI processes every process holds the same Newton state; rank 0 alone
-  // prints the progress and writes the files, but for each process's piece of a VTU.
+  // On several MPI processes rank 0 alone prints the progress and writes the files, but
+  // for each process's piece of a VTU, which it writes from the state it holds.
   int rank = 0, processes = 1;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   MPI_Comm_size(PETSC_COMM_WORLD, &processes);
@@ -97,7 +97,7 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
                           resume.state.time);
   nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, scene->problem, scene->newton, *solver);
   if (processes > 1)
-    header += fmt::format("# MPI processes: {} (cells split by {}; mesh and Newton state whole on each)\n", processes,
+    header += fmt::format("# MPI processes: {} (cells split by {}; the mesh whole on each, the Newton state held per process)\n", processes,
                           newton.partition().partitioner);
   const bool verbose = !o.quiet && writer;
   if (verbose) fmt::print(stderr, "{}", header);
@@ -133,7 +133,8 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   const int last_step = scene->problem.step_reaching(until);
   // A load step's VTU: written by rank 0, or on several processes one piece per process
   // (its own cells) and a PVTU by rank 0 that joins them.
-  const auto write_step_output = [&](const nonlinear::StepResult& r, const std::vector<double>& u) {
+  const auto write_step_output = [&](const nonlinear::StepResult& r) {
+    const fem::StateView u = newton.held_displacement();
     const std::string stem = fmt::format("step-{:03d}", r.step);
     if (processes == 1) {
       write_vtu(out_dir + "/" + stem + ".vtu", *scene, u, newton.multipliers(), r.time);
@@ -145,7 +146,7 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
     if (!writer) return;
     std::vector<std::string> pieces;
     for (int k = 0; k < processes; ++k) pieces.push_back(fmt::format("{}-p{}.vtu", stem, k));
-    write_pvtu(out_dir + "/" + stem + ".pvtu", *scene, u, newton.multipliers(), r.time, pieces);
+    write_pvtu(out_dir + "/" + stem + ".pvtu", *scene, newton.multipliers(), pieces);
     pvd->add(r.time, stem + ".pvtu");
   };
   std::unique_ptr<RunRecorder> record;
@@ -169,14 +170,14 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
     if (iteration_table) iteration_table->add(r);
     if (record) record->add(r);  // before the checkpoint
     if (r.completes_step) {
-      // The whole state, gathered on every process (each takes part), for the checkpoint and
-      // the contact table that rank 0 writes and the VTU pieces.
+      // The checkpoint needs the whole state, gathered on rank 0 (every process takes part);
+      // the contact table reads the contact surfaces, which every process holds.
       const nonlinear::QuasiStaticSolver::State state = newton.state();
       if (writer)
         write_checkpoint(out_dir + "/checkpoint.bin",
                          {scene->name, scene->level, state, newton.linear_tally(), newton.cut_back()});
-      if (contact_table) contact_table->add(r, *scene, state.u, newton.multipliers());
-      if (scene->output.vtu && o.write_vtu) write_step_output(r, state.u);
+      if (contact_table) contact_table->add(r, *scene, newton.held_displacement(), newton.multipliers());
+      if (scene->output.vtu && o.write_vtu) write_step_output(r);
     }
     if (verbose)
       fmt::print(stderr, "step {}/{}{}: t = {:.6g}, {} after {} Newton iterations, residual {:.3e} (reference {:.3e}), "

@@ -103,56 +103,51 @@ std::vector<int> piece_points(const fem::FieldSpace& space, const std::vector<in
 
 // Displacement, pressure of mixed bodies, and with contact, at the slave vertices, the
 // multiplier, its normal part and the contact state.
-void add_point_data(Piece& p, const scene::Scene& scene, const std::vector<double>& u, const std::vector<double>& lambda,
-                    double t, const std::vector<int>& used, const std::vector<int>& local) {
+void add_point_data(Piece& p, const scene::Scene& scene, fem::StateView u, const std::vector<double>& lambda, double t,
+                    const std::vector<int>& used, const std::vector<int>& local) {
   const fem::FieldSpace& space = *scene.space;
-  const int d = space.dim();
-  const std::vector<double> nodal = space.nodal_values(u);
   std::vector<double> displacement(static_cast<size_t>(p.n_points) * 3, 0.0);
-  for (int k = 0; k < p.n_points; ++k)
-    for (int c = 0; c < d; ++c) displacement[static_cast<size_t>(k) * 3 + c] = nodal[static_cast<size_t>(used[k]) * d + c];
+  for (int k = 0; k < p.n_points; ++k) space.nodal_value(u, used[k], &displacement[static_cast<size_t>(k) * 3]);
   p.point_data.push_back({"displacement", 3, std::move(displacement), 3});
   if (space.has_pressure()) {
-    const std::vector<double> pressure = space.nodal_pressure(u);
     std::vector<double> mine(p.n_points);
-    for (int k = 0; k < p.n_points; ++k) mine[k] = pressure[used[k]];
+    for (int k = 0; k < p.n_points; ++k) mine[k] = space.nodal_pressure(u, used[k]);
     p.point_data.push_back({"pressure", 1, std::move(mine)});
   }
   if (scene.problem.constraints.empty() || lambda.empty()) return;
   std::vector<std::int32_t> state(p.n_points, -1);
   std::vector<double> multiplier(static_cast<size_t>(p.n_points) * 3, 0.0), normal(p.n_points, 0.0);
-  for (const auto& [pair, slave_nodes] : multiplier_nodes(scene, t, u, lambda))
-    for (const auto& node : slave_nodes) {  // a slave vertex is node `vertex` (vertices come first)
-      const int k = local[node.vertex];
-      if (k < 0) continue;  // in another process's piece
-      state[k] = node.state;
-      normal[k] = node.normal;
-      for (int c = 0; c < 3; ++c) multiplier[static_cast<size_t>(k) * 3 + c] = node.multiplier[c];
-    }
+  if (p.n_points > 0) {  // a piece without points (a PVTU's declaration) reads no state
+    for (const auto& [pair, slave_nodes] : multiplier_nodes(scene, t, u, lambda))
+      for (const auto& node : slave_nodes) {  // a slave vertex is node `vertex` (vertices come first)
+        const int k = local[node.vertex];
+        if (k < 0) continue;  // in another process's piece
+        state[k] = node.state;
+        normal[k] = node.normal;
+        for (int c = 0; c < 3; ++c) multiplier[static_cast<size_t>(k) * 3 + c] = node.multiplier[c];
+      }
+  }
   p.point_data.push_back({"contact_multiplier", 3, std::move(multiplier), 3});
   p.point_data.push_back({"contact_pressure", 1, std::move(normal)});
   p.point_data.push_back({"contact_state", 1, std::move(state)});
 }
 
 // Cauchy stress and von Mises at the centroids, body id, and a piece's process number.
-void add_cell_data(Piece& p, const scene::Scene& scene, const std::vector<double>& u, const std::vector<int>& cells,
-                   int process) {
-  const std::vector<double> stress = fem::cell_cauchy_stress(*scene.space, scene.problem.cell_material, u);
-  std::vector<double> mine(cells.size() * 9), mises(cells.size());
+void add_cell_data(Piece& p, const scene::Scene& scene, fem::StateView u, const std::vector<int>& cells, int process) {
+  std::vector<double> stress = fem::cell_cauchy_stress(*scene.space, scene.problem.cell_material, u, &cells);
+  std::vector<double> mises(cells.size());
   std::vector<std::int32_t> body(cells.size());
   for (size_t k = 0; k < cells.size(); ++k) {
-    const double* sigma = &stress[static_cast<size_t>(cells[k]) * 9];
-    std::copy(sigma, sigma + 9, mine.begin() + static_cast<std::ptrdiff_t>(k) * 9);
-    mises[k] = von_mises(sigma);
+    mises[k] = von_mises(&stress[k * 9]);
     body[k] = scene.body_of_cell[cells[k]];
   }
-  p.cell_data.push_back({"cauchy_stress", 9, std::move(mine), 9, 10});
+  p.cell_data.push_back({"cauchy_stress", 9, std::move(stress), 9, 10});
   p.cell_data.push_back({"von_mises", 1, std::move(mises), 1, 10});
   p.cell_data.push_back({"body_id", 1, std::move(body)});
   if (process >= 0) p.cell_data.push_back({"process", 1, std::vector<std::int32_t>(cells.size(), process)});
 }
 
-Piece build_piece(const scene::Scene& scene, const std::vector<double>& u, const std::vector<double>& lambda, double t,
+Piece build_piece(const scene::Scene& scene, fem::StateView u, const std::vector<double>& lambda, double t,
                   const std::vector<int>& cells, int process) {
   const fem::FieldSpace& space = *scene.space;
   const int d = space.dim(), npc = space.nodes_per_cell();
@@ -214,21 +209,21 @@ std::vector<int> all_cells(const scene::Scene& scene) {
 
 }  // namespace
 
-void write_vtu(const std::string& path, const scene::Scene& scene, const std::vector<double>& u,
+void write_vtu(const std::string& path, const scene::Scene& scene, fem::StateView u,
                const std::vector<double>& lambda, double t) {
   write_piece(path, build_piece(scene, u, lambda, t, all_cells(scene), -1),
               scene.output.vtu_format == scene::VtuFormat::Binary);
 }
 
-void write_vtu_piece(const std::string& path, const scene::Scene& scene, const std::vector<double>& u,
+void write_vtu_piece(const std::string& path, const scene::Scene& scene, fem::StateView u,
                      const std::vector<double>& lambda, double t, const std::vector<int>& cells, int process) {
   write_piece(path, build_piece(scene, u, lambda, t, cells, process),
               scene.output.vtu_format == scene::VtuFormat::Binary);
 }
 
-void write_pvtu(const std::string& path, const scene::Scene& scene, const std::vector<double>& u,
-                const std::vector<double>& lambda, double t, const std::vector<std::string>& piece_files) {
-  const Piece declared = build_piece(scene, u, lambda, t, {}, 0);  // the pieces' arrays, without data
+void write_pvtu(const std::string& path, const scene::Scene& scene, const std::vector<double>& lambda,
+                const std::vector<std::string>& piece_files) {
+  const Piece declared = build_piece(scene, {}, lambda, 0, {}, 0);  // the pieces' arrays, without data
   const auto declare = [](const DataArray& a) {
     return fmt::format("<PDataArray type=\"{}\" {}/>\n", a.type(), a.attributes());
   };

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "fem/app_view.hpp"
 #include "scene/scene.hpp"
 
 namespace stiction::harness {
@@ -15,19 +16,20 @@ namespace stiction::harness {
 double von_mises(const double* sigma);
 
 // Writes displacement and, for mixed bodies, pressure (point data) and Cauchy stress, von Mises, body id (cell data, at
-// cell centroids) for the coefficient vector u; with contact, at the slave nodes (pseudo-time t, multipliers
+// cell centroids) for the coefficients u; with contact, at the slave nodes (pseudo-time t, multipliers
 // lambda) the multiplier (traction on the slave), its normal part lambda_n and the contact state (0 inactive,
 // 1 stick, 2 slip; -1 at every point that carries no multiplier).
-void write_vtu(const std::string& path, const scene::Scene& scene, const std::vector<double>& u,
+void write_vtu(const std::string& path, const scene::Scene& scene, fem::StateView u,
                const std::vector<double>& lambda = {}, double t = 0);
 // The same for the given cells only (one process's), with the nodes they use and a cell
-// array "process" holding `process`.
-void write_vtu_piece(const std::string& path, const scene::Scene& scene, const std::vector<double>& u,
+// array "process" holding `process`. u need hold only the nodes of these cells and, with
+// contact, of the contact surfaces (a process's ghosted storage).
+void write_vtu_piece(const std::string& path, const scene::Scene& scene, fem::StateView u,
                      const std::vector<double>& lambda, double t, const std::vector<int>& cells, int process);
 // The PVTU that joins the pieces (file names relative to it) written by write_vtu_piece
-// for the same state.
-void write_pvtu(const std::string& path, const scene::Scene& scene, const std::vector<double>& u,
-                const std::vector<double>& lambda, double t, const std::vector<std::string>& piece_files);
+// for the same state (lambda: whether they carry the contact arrays).
+void write_pvtu(const std::string& path, const scene::Scene& scene, const std::vector<double>& lambda,
+                const std::vector<std::string>& piece_files);
 
 class PvdCollection {
 public:

@@ -61,10 +61,14 @@ void DofLayout::scatter(const std::vector<double>& values, Vec v) const {
   STICTION_PETSC(VecRestoreArray(v, &a));
 }
 
-void DofLayout::gather(Vec v, std::vector<double>& values) const {
-  values.resize(n_total_);
+void DofLayout::gather(Vec v, std::vector<double>& values) const { gather_with(v, values, false); }
+
+void DofLayout::gather_on_root(Vec v, std::vector<double>& values) const { gather_with(v, values, true); }
+
+void DofLayout::gather_with(Vec v, std::vector<double>& values, bool root_only) const {
   const PetscScalar* a;
   if (identity()) {
+    values.resize(n_total_);
     STICTION_PETSC(VecGetArrayRead(v, &a));
     std::copy(a, a + n_total_, values.begin());
     STICTION_PETSC(VecRestoreArrayRead(v, &a));
@@ -72,11 +76,15 @@ void DofLayout::gather(Vec v, std::vector<double>& values) const {
   }
   // Made for each call and freed after it: kept, the scatter and its whole-size vector
   // would stay on every process between the output steps that gather.
-  PetscOwner<VecScatter, VecScatterDestroy> to_all;
+  PetscOwner<VecScatter, VecScatterDestroy> scatter;
   PetscVec whole;
-  STICTION_PETSC(VecScatterCreateToAll(v, to_all.out(), whole.out()));
-  STICTION_PETSC(VecScatterBegin(to_all, v, whole, INSERT_VALUES, SCATTER_FORWARD));
-  STICTION_PETSC(VecScatterEnd(to_all, v, whole, INSERT_VALUES, SCATTER_FORWARD));
+  if (root_only) STICTION_PETSC(VecScatterCreateToZero(v, scatter.out(), whole.out()));
+  else STICTION_PETSC(VecScatterCreateToAll(v, scatter.out(), whole.out()));
+  STICTION_PETSC(VecScatterBegin(scatter, v, whole, INSERT_VALUES, SCATTER_FORWARD));
+  STICTION_PETSC(VecScatterEnd(scatter, v, whole, INSERT_VALUES, SCATTER_FORWARD));
+  values.clear();
+  if (root_only && rank_ != 0) return;
+  values.resize(n_total_);
   STICTION_PETSC(VecGetArrayRead(whole, &a));
   for (PetscInt k = 0; k < n_total_; ++k) values[k] = a[global_[k]];
   STICTION_PETSC(VecRestoreArrayRead(whole, &a));

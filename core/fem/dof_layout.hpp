@@ -50,6 +50,9 @@ public:
   void scatter(const std::vector<double>& values, Vec v) const;
   // Every entry of v on every rank, in app order.
   void gather(Vec v, std::vector<double>& values) const;
+  // Every entry of v in app order on rank 0; values is left empty on the other ranks (what
+  // one writer needs, without a whole-size copy on every process).
+  void gather_on_root(Vec v, std::vector<double>& values) const;
   // The owned PETSc indices of app unknowns [first, last), ascending.
   std::vector<PetscInt> owned_indices(PetscInt first, PetscInt last) const;
   // The numbering of the block of app unknowns [first, last) that PETSc gives it as a field
@@ -58,6 +61,8 @@ public:
   std::vector<PetscInt> block_numbering(PetscInt first, PetscInt last) const;
 
 private:
+  void gather_with(Vec v, std::vector<double>& values, bool root_only) const;
+
   MPI_Comm comm_;
   int rank_ = 0, size_ = 1;
   const MeshPartition* partition_;

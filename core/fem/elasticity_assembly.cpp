@@ -344,16 +344,18 @@ Mat assemble_pressure_mass(const DofLayout& layout, const FieldSpace& space) {
 
 std::vector<double> cell_cauchy_stress(const FieldSpace& space,
                                        const std::vector<const materials::Material*>& cell_material,
-                                       StateView u) {
+                                       StateView u, const std::vector<int>* cells) {
   return dispatch(space, [&](auto Dc, auto NBc) {
     constexpr int D = decltype(Dc)::value, NB = decltype(NBc)::value;
+    const int n = cells ? static_cast<int>(cells->size()) : space.mesh().n_cells();
     std::vector<double> out;
-    out.reserve(static_cast<size_t>(space.mesh().n_cells()) * 9);
+    out.reserve(static_cast<size_t>(n) * 9);
     double centroid[D], N[NB], dN[NB * D], ue[NB][D], G[NB][D];
     std::fill(centroid, centroid + D, 1.0 / (D + 1));
     eval_shape(D, space.kind(), centroid, N, dN);
     int nodes[NB];
-    for (int c = 0; c < space.mesh().n_cells(); ++c) {
+    for (int k = 0; k < n; ++k) {
+      const int c = cells ? (*cells)[k] : k;
       space.cell_nodes(c, nodes);
       for (int a = 0; a < NB; ++a)
         for (int i = 0; i < D; ++i) ue[a][i] = u[static_cast<size_t>(nodes[a]) * D + i];

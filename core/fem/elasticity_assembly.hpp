@@ -50,10 +50,11 @@ void subtract_traction(const FieldSpace& space, int facet_tag, const VectorField
 // dof - first pressure dof). Each rank adds its own cells; the rows go to their owners.
 Mat assemble_pressure_mass(const DofLayout& layout, const FieldSpace& space);
 
-// Cauchy stress (3x3, row-major) at each cell's centroid, for output.
+// Cauchy stress (3x3, row-major) at each cell's centroid, for output: of every cell, or of
+// the given cells in their order (u need hold only their nodes).
 std::vector<double> cell_cauchy_stress(const FieldSpace& space,
                                        const std::vector<const materials::Material*>& cell_material,
-                                       StateView u);
+                                       StateView u, const std::vector<int>* cells = nullptr);
 
 // Integral of the first Piola traction P N over the boundary facets tagged `facet_tag`
 // (reference configuration, N the facet's outward normal): the force the body's material

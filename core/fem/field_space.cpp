@@ -81,24 +81,30 @@ void FieldSpace::interpolate_node(const VectorField& g, int node, double* out) c
   for (int k = 0; k < dim(); ++k) out[k] -= 0.5 * (ga[k] + gb[k]);
 }
 
+double FieldSpace::nodal_pressure(StateView coefs, int node) const {
+  if (is_vertex_node(node)) return pressure_dof(node) >= 0 ? coefs[pressure_dof(node)] : 0.0;
+  const auto [a, b] = topo_.edges[node - n_vertices()];
+  return 0.5 * (nodal_pressure(coefs, a) + nodal_pressure(coefs, b));
+}
+
+void FieldSpace::nodal_value(StateView coefs, int node, double* out) const {
+  const int d = dim();
+  for (int k = 0; k < d; ++k) out[k] = coefs[static_cast<size_t>(node) * d + k];
+  if (kind_ != BasisKind::P2Hierarchical || is_vertex_node(node)) return;
+  const auto [a, b] = topo_.edges[node - n_vertices()];
+  for (int k = 0; k < d; ++k) out[k] += 0.5 * (coefs[static_cast<size_t>(a) * d + k] + coefs[static_cast<size_t>(b) * d + k]);
+}
+
 std::vector<double> FieldSpace::nodal_pressure(const std::vector<double>& coefs) const {
-  std::vector<double> out(n_nodes(), 0.0);
-  for (int v = 0; v < n_vertices(); ++v)
-    if (pressure_dof(v) >= 0) out[v] = coefs[pressure_dof(v)];
-  if (is_quadratic(kind_))
-    for (int e = 0; e < topo_.n_edges(); ++e) out[n_vertices() + e] = 0.5 * (out[topo_.edges[e][0]] + out[topo_.edges[e][1]]);
+  std::vector<double> out(n_nodes());
+  for (int n = 0; n < n_nodes(); ++n) out[n] = nodal_pressure(StateView(coefs), n);
   return out;
 }
 
 std::vector<double> FieldSpace::nodal_values(const std::vector<double>& coefs) const {
-  std::vector<double> out(coefs.begin(), coefs.begin() + n_displacement_dofs());
-  if (kind_ != BasisKind::P2Hierarchical) return out;
+  std::vector<double> out(static_cast<size_t>(n_displacement_dofs()));
   const int d = dim();
-  for (int e = 0; e < topo_.n_edges(); ++e) {
-    const auto [a, b] = topo_.edges[e];
-    double* c = &out[static_cast<size_t>(n_vertices() + e) * d];
-    for (int k = 0; k < d; ++k) c[k] += 0.5 * (coefs[static_cast<size_t>(a) * d + k] + coefs[static_cast<size_t>(b) * d + k]);
-  }
+  for (int n = 0; n < n_nodes(); ++n) nodal_value(coefs, n, &out[static_cast<size_t>(n) * d]);
   return out;
 }
 

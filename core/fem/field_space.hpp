@@ -13,6 +13,7 @@
 #include <functional>
 #include <vector>
 
+#include "fem/app_view.hpp"
 #include "fem/basis.hpp"
 #include "mesh/mesh.hpp"
 
@@ -74,6 +75,10 @@ public:
   // Pressure at every node (P1: vertex value, edge midpoint = mean of its vertices; 0 where
   // there is no pressure field).
   std::vector<double> nodal_pressure(const std::vector<double>& coefs) const;
+  // The same at one node (dim entries into out), from coefficients of which the node's
+  // and, at an edge node, its edge's vertices' are held (a process's ghosted storage).
+  void nodal_value(StateView coefs, int node, double* out) const;
+  double nodal_pressure(StateView coefs, int node) const;
   // Coefficient weights w with sum_i w_i r_i = total force for a nodal force vector r:
   // the coefficients of the constant 1 (1 on vertices; on edges 1 nodal, 0 hierarchical).
   double unit_weight(int node) const { return is_vertex_node(node) || kind_ == BasisKind::P2Nodal ? 1.0 : 0.0; }

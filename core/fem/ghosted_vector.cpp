@@ -92,6 +92,12 @@ std::vector<double> GhostedVector::whole() const {
   return out;
 }
 
+std::vector<double> GhostedVector::whole_on_root() const {
+  std::vector<double> out;
+  pattern_->layout().gather_on_root(vec(), out);
+  return out;
+}
+
 void GhostedVector::fill(double value) { std::fill(storage_.begin(), storage_.end(), value); }
 
 std::vector<PetscInt> unknowns_of_cells(const FieldSpace& space, const std::vector<int>& cells) {

@@ -61,6 +61,8 @@ public:
   void assign_whole(const std::vector<double>& whole);
   // The whole vector in app order on every process (from the owned entries).
   std::vector<double> whole() const;
+  // The same on process 0 only (empty on the others).
+  std::vector<double> whole_on_root() const;
   void fill(double value);
 
 private:

@@ -106,6 +106,9 @@ QuasiStaticSolver::QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& pro
 std::vector<PetscInt> QuasiStaticSolver::unknowns_read() const {
   if (layout_.identity()) return {};
   std::vector<PetscInt> out = fem::unknowns_of_cells(*problem_.space, layout_.row_cells());
+  // An own cell whose nodes all belong to other processes is not a row cell.
+  const std::vector<PetscInt> own = fem::unknowns_of_cells(*problem_.space, partition_.owned_cells);
+  out.insert(out.end(), own.begin(), own.end());
   std::vector<int> tags;
   for (const auto* c : problem_.constraints)
     for (const auto& [role, tag] : c->surfaces()) tags.push_back(tag);
@@ -484,7 +487,9 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
 }
 
 QuasiStaticSolver::State QuasiStaticSolver::state() const {
-  State s{completed_step_, time_, displacement(), lambda_, {}};
+  std::vector<double> u = u_.whole_on_root();
+  if (!u.empty()) u.resize(static_cast<size_t>(problem_.space->n_dofs()));
+  State s{completed_step_, time_, std::move(u), lambda_, {}};
   s.constraints = constraints_.save_state();
   return s;
 }

@@ -8,7 +8,7 @@
 // On several MPI processes (comm) each holds the whole mesh, the multipliers and the
 // contact states, and of the displacement (and pressure) state only its owned unknowns and
 // the ghosts it reads (fem::GhostedVector: the nodes of the cells that reach its owned rows,
-// and of the contact surfaces). Each process assembles those cells, so its owned rows of the
+// of its own cells, whose output it writes, and of the contact surfaces). Each process assembles those cells, so its owned rows of the
 // residual are complete; the contact forces are summed into their owners' rows; the norms
 // every decision reads are reduced over processes to the same bits everywhere, so every
 // process takes every decision alike. The backend solves the Newton system distributed
@@ -163,8 +163,9 @@ public:
   std::vector<StepResult> run(const std::function<void(const StepResult&)>& on_step = {}, int first_step = 1,
                               int last_step = -1);
 
-  // What a converged state carries into the next increment, whole (u gathered in app order
-  // on every process): what a checkpoint keeps. state() is collective.
+  // What a converged state carries into the next increment, whole: what a checkpoint keeps.
+  // state() is collective and gathers u in app order on process 0 only (u is empty on the
+  // others); restore() takes the whole state on every process.
   struct State {
     int step = 0;      // the last load step completed
     double time = 0;   // its pseudo-time (or of the last converged part of the next step)
@@ -196,6 +197,10 @@ public:
   // The displacement (and pressure) state, whole in app order, on every process (gathered
   // on several: every process must call it).
   std::vector<double> displacement() const;
+  // The same as this process holds it (no communication): its owned unknowns and the ghosts
+  // of the nodes of its own cells (partition().owned_cells), of the cells that reach its
+  // rows and of every constraint's surfaces. What each process writes its output from.
+  fem::StateView held_displacement() const { return u_.view(); }
   // Contact multipliers of every constraint, in order (empty without contact).
   const std::vector<double>& multipliers() const { return lambda_; }
   // The last assembled Newton system (for record/replay and tests), in layout()'s numbering.
@@ -227,8 +232,8 @@ public:
 
 private:
   struct Residuals;
-  // The unknowns this process reads besides its own: the nodes of its row cells and of
-  // every constraint's surfaces.
+  // The unknowns this process reads besides its own: the nodes of its row cells (assembly),
+  // of its own cells (output) and of every constraint's surfaces (contact).
   std::vector<PetscInt> unknowns_read() const;
   // The residual r(u) = f_int - f_ext at pseudo-time t (constrained rows included; on
   // several processes complete in the owned rows only), and the status over every process.

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "cli_run.hpp"
+#include "csv_table.hpp"
 #include "vtu_reader.hpp"
 
 namespace {
@@ -233,9 +234,11 @@ TEST_F(StictionUnderMpirun, BenchRanksAxisRefusesAOneProcessBackend) {
   EXPECT_FALSE(fs::exists(dir_ / "sweep" / "runs.csv")) << "the refused sweep started runs";
 }
 
-// On two processes each process writes the cells it assembles as a VTU piece and rank 0 a
-// PVTU joining them: together the pieces hold every cell once, and at every point the
-// one-process solution (the Newton path is the same; values to 1e-8 of the largest).
+// On two processes each process writes its own cells as a VTU piece, from the state it holds
+// (its owned unknowns and ghosts), and rank 0 a PVTU joining them: together the pieces hold
+// every cell once, and at every point and cell the one-process solution (the Newton path is
+// the same; values to 1e-8 of the largest). Rank 0 writes contact.csv from the contact
+// surfaces it holds: the one-process table.
 TEST_F(StictionUnderMpirun, EachProcessWritesItsPieceOfTheSolutionAndRankZeroJoinsThem) {
   const fs::path one = dir_ / "one", two = dir_ / "two";
   const std::vector<std::string> common{"solve", "sliding-block-2d", "--quick", "--quiet", "--out"};
@@ -272,6 +275,31 @@ TEST_F(StictionUnderMpirun, EachProcessWritesItsPieceOfTheSolutionAndRankZeroJoi
     }
   }
 
+  // Cells are matched by their vertices' centroid (2D, to 1e-9).
+  const auto centroids = [](const stiction::test::VtuFile& f) {
+    const auto& x = f.array("Points").values;
+    const auto& connectivity = f.array("connectivity").values;
+    const auto& offsets = f.array("offsets").values;
+    std::vector<std::pair<long long, long long>> out;
+    for (size_t c = 0; c < offsets.size(); ++c) {
+      const size_t first = c == 0 ? 0 : static_cast<size_t>(offsets[c - 1]);
+      double cx = 0, cy = 0;
+      for (size_t k = first; k < first + 3; ++k) {  // the triangle's vertices come first
+        cx += x[static_cast<size_t>(connectivity[k]) * 3] / 3;
+        cy += x[static_cast<size_t>(connectivity[k]) * 3 + 1] / 3;
+      }
+      out.emplace_back(std::llround(cx * 1e9), std::llround(cy * 1e9));
+    }
+    return out;
+  };
+  std::map<std::pair<long long, long long>, size_t> cell_at;
+  const auto whole_centroids = centroids(whole);
+  for (size_t c = 0; c < whole_centroids.size(); ++c) cell_at[whole_centroids[c]] = c;
+  const auto& mises = whole.array("von_mises").values;
+  double mises_max = 0;
+  for (double v : mises) mises_max = std::max(mises_max, v);
+  ASSERT_GT(mises_max, 0);
+
   int cells = 0;
   for (int rank = 0; rank < 2; ++rank) {
     const std::string name = "step-001-p" + std::to_string(rank) + ".vtu";
@@ -290,8 +318,64 @@ TEST_F(StictionUnderMpirun, EachProcessWritesItsPieceOfTheSolutionAndRankZeroJoi
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(pu[k + c], u[at->second * 3 + c], 1e-8 * u_max) << name << " point " << k / 3;
       EXPECT_EQ(ps[k / 3], state[at->second]) << name << " point " << k / 3;
     }
+    const auto piece_centroids = centroids(piece);
+    const auto& piece_mises = piece.array("von_mises").values;
+    for (size_t c = 0; c < piece_centroids.size(); ++c) {
+      const auto at = cell_at.find(piece_centroids[c]);
+      ASSERT_NE(at, cell_at.end()) << name << ": cell " << c << " is not a cell of the whole mesh";
+      EXPECT_NEAR(piece_mises[c], mises[at->second], 1e-8 * mises_max) << name << " cell " << c;
+    }
   }
   EXPECT_EQ(cells, std::stoi(whole.piece.at("NumberOfCells"))) << "the pieces hold every cell once";
+
+  const auto contact_one = stiction::harness::read_csv((one / "contact.csv").string());
+  const auto contact_two = stiction::harness::read_csv((two / "contact.csv").string());
+  ASSERT_FALSE(contact_one.rows.empty());
+  ASSERT_EQ(contact_two.rows.size(), contact_one.rows.size());
+  double lambda_max = 0;
+  for (const auto& row : contact_one.rows) lambda_max = std::max(lambda_max, std::abs(std::stod(row.at("lambda_n"))));
+  ASSERT_GT(lambda_max, 0) << "no node presses";
+  for (size_t k = 0; k < contact_one.rows.size(); ++k) {
+    const auto &a = contact_one.rows[k], &b = contact_two.rows[k];
+    EXPECT_EQ(a.at("vertex"), b.at("vertex")) << "row " << k;
+    EXPECT_EQ(a.at("state"), b.at("state")) << "row " << k;
+    EXPECT_NEAR(std::stod(a.at("lambda_n")), std::stod(b.at("lambda_n")), 1e-8 * lambda_max) << "row " << k;
+    EXPECT_NEAR(std::stod(a.at("x")), std::stod(b.at("x")), 1e-9) << "row " << k;
+  }
+}
+
+// A checkpoint written on two processes holds the whole state (gathered on rank 0), in the
+// numbering of the mesh, not of the processes: restarted on two processes or on one, the run
+// ends where the uninterrupted one-process run does (the same Newton iterations, forces to
+// 1e-8).
+TEST_F(StictionUnderMpirun, CheckpointOfTwoProcessesRestartsOnAnyProcessCount) {
+  const std::string scene = "hertz-cylinders-2d";
+  auto solve = [&](int processes, const fs::path& out, std::vector<std::string> extra) {
+    std::vector<std::string> a{"solve", scene, "--quiet", "--no-vtu", "--out", out.string()};
+    a.insert(a.end(), extra.begin(), extra.end());
+    return run(processes, a);
+  };
+  const CliRun whole = solve(1, dir_ / "whole", {});
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  for (int processes : {2, 1}) {
+    const fs::path out = dir_ / ("restarted-on-" + std::to_string(processes));
+    const CliRun first = solve(2, out, {"--until", "0.5"});
+    ASSERT_EQ(first.exit_code, 0) << first.err;
+    ASSERT_EQ(read_rows(out / "steps.csv").size(), 1u) << "the first run stops after its first load step";
+    const CliRun rest = solve(processes, out, {"--restart", out.string()});
+    ASSERT_EQ(rest.exit_code, 0) << rest.err;
+    const auto a = read_rows(dir_ / "whole" / "steps.csv"), b = read_rows(out / "steps.csv");
+    ASSERT_EQ(a.size(), b.size()) << "restarted on " << processes;
+    double force_scale = 0;
+    for (const auto& [name, value] : a.back())
+      if (is_force_column(name)) force_scale = std::max(force_scale, std::abs(std::stod(value)));
+    ASSERT_GT(force_scale, 0);
+    EXPECT_EQ(a.back().at("newton_iterations"), b.back().at("newton_iterations")) << "restarted on " << processes;
+    for (const auto& [name, value] : a.back())
+      if (is_force_column(name))
+        EXPECT_NEAR(std::stod(value), std::stod(b.back().at(name)), 1e-8 * force_scale)
+            << name << ", restarted on " << processes;
+  }
 }
 
 TEST_F(StictionUnderMpirun, DivergingNewtonOnTwoProcessesGivesOneMessageAndKeepsItsRows) {

@@ -19,6 +19,7 @@
 
 #include "builtin_scenes.hpp"
 #include "common/petsc.hpp"
+#include "fem/ghosted_vector.hpp"
 #include "fem/mesh_partition.hpp"
 #include "nonlinear/constraint_set.hpp"
 #include "nonlinear/newton.hpp"
@@ -231,6 +232,41 @@ TEST_P(DistributedContact, EachProcessComputesItsShareOnce) {
   MPI_Allreduce(MPI_IN_PLACE, r_u_shared.data(), static_cast<int>(n_u), MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
   EXPECT_LT(max_difference(r_u_shared, r_u_alone), 1e-12 * max_abs(r_u_alone));
   EXPECT_LT(max_difference(r_c_shared, r_c_alone), 1e-12 * std::max(max_abs(r_c_alone), 1e-300));
+}
+
+// What each process writes its output from without a gather: the state it holds covers the
+// nodes of its own cells (its VTU piece) and the contact surfaces (contact.csv, written by
+// rank 0), with the gathered state's values; the checkpoint's state is whole on rank 0 only.
+// (An own cell whose nodes all lie in cells without a node of this process would be covered
+// by neither its row cells nor the surfaces; the built-in partitions have none.)
+TEST_P(DistributedContact, HeldStateCoversOwnCellsAndContactSurfaces) {
+  int rank = 0;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  auto scene = harness::open_scene(GetParam(), 0, {});
+  auto solver = solvers::create_solver("lu-mumps", PETSC_COMM_WORLD);
+  nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, scene->problem, scene->newton, *solver);
+  const auto steps = newton.run({}, 1, 1);
+  ASSERT_FALSE(steps.empty());
+  ASSERT_TRUE(steps.back().converged());
+  const fem::FieldSpace& space = *scene->problem.space;
+  const std::vector<double> whole = newton.displacement();
+  const fem::StateView held = newton.held_displacement();
+  std::vector<int> tags;
+  for (const auto* c : scene->problem.constraints)
+    for (const auto& [role, tag] : c->surfaces()) tags.push_back(tag);
+  std::vector<PetscInt> needed = fem::unknowns_of_cells(space, newton.partition().owned_cells);
+  const std::vector<PetscInt> surfaces = fem::unknowns_of_facets(space, tags);
+  ASSERT_FALSE(surfaces.empty());
+  needed.insert(needed.end(), surfaces.begin(), surfaces.end());
+  for (PetscInt a : needed) {
+    ASSERT_TRUE(held.holds(static_cast<size_t>(a))) << "unknown " << a << " on process " << rank;
+    EXPECT_EQ(held[static_cast<size_t>(a)], whole[static_cast<size_t>(a)]) << "unknown " << a;
+  }
+  EXPECT_LT(held.storage().size(), whole.size()) << "process " << rank << " holds the whole state";
+
+  const auto state = newton.state();
+  if (rank == 0) EXPECT_EQ(state.u, whole);
+  else EXPECT_TRUE(state.u.empty()) << "process " << rank << " holds a whole copy for the checkpoint";
 }
 
 // Deformable master in 2D and 3D (self-contact), rigid plane with friction.

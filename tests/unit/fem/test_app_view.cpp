@@ -80,7 +80,58 @@ TEST(AppView, AssemblyThroughScatteredStorageMatchesTheWholeVector) {
     EXPECT_NE(f_whole[0], 0.0) << name;
     for (int c = 0; c < 3; ++c) EXPECT_EQ(f_view[c], f_whole[c]) << name;
   }
-  EXPECT_EQ(cell_cauchy_stress(space, materials, state.view()), cell_cauchy_stress(space, materials, u));
+  const std::vector<double> stress = cell_cauchy_stress(space, materials, u);
+  EXPECT_EQ(cell_cauchy_stress(space, materials, state.view()), stress);
+  // Output of some cells (a process's VTU piece), in the order asked for.
+  const std::vector<int> some = {17, 0, space.mesh().n_cells() - 1};
+  const std::vector<double> some_stress = cell_cauchy_stress(space, materials, state.view(), &some);
+  ASSERT_EQ(some_stress.size(), some.size() * 9);
+  for (size_t k = 0; k < some.size(); ++k)
+    for (int i = 0; i < 9; ++i) EXPECT_EQ(some_stress[k * 9 + i], stress[static_cast<size_t>(some[k]) * 9 + i]);
+  // Nodal displacements (hierarchical edge coefficients turned into values) and pressures,
+  // node by node through the view.
+  const std::vector<double> nodal = space.nodal_values(u), pressure = space.nodal_pressure(u);
+  double pressure_norm = 0;
+  for (int n = 0; n < space.n_nodes(); ++n) {
+    double value[3];
+    space.nodal_value(state.view(), n, value);
+    for (int k = 0; k < space.dim(); ++k) EXPECT_EQ(value[k], nodal[static_cast<size_t>(n) * space.dim() + k]);
+    EXPECT_EQ(space.nodal_pressure(state.view(), n), pressure[n]);
+    pressure_norm += std::abs(pressure[n]);
+  }
+  EXPECT_GT(pressure_norm, 0);
+}
+
+// A hierarchical P2 edge coefficient is the midpoint value minus the mean of the edge's
+// vertex values: nodal_value adds the mean back, and the pressure at an edge node is the
+// mean of its vertices' (P1 pressure).
+TEST(AppView, NodalValuesOfHierarchicalCoefficients) {
+  auto s = scene::build_scene(harness::builtin_scenes().at("mooney-rivlin-block"), "mooney-rivlin-block", ".", 0);
+  const FieldSpace& space = *s->space;
+  ASSERT_EQ(space.kind(), BasisKind::P2Hierarchical);
+  ASSERT_TRUE(space.has_pressure());
+  // The coefficients of the linear field g(x) = A x + b and the pressure p(x) = 2 + x_0.
+  const auto g = [](const double* x, double* out) {
+    out[0] = 0.1 * x[0] - 0.2 * x[1] + 0.05 * x[2] + 1;
+    out[1] = 0.3 * x[2] - 2;
+    out[2] = -0.4 * x[0] + 0.5;
+  };
+  std::vector<double> coefs(space.n_dofs(), 0.0);
+  space.interpolate(g, coefs);
+  for (int v = 0; v < space.n_vertices(); ++v)
+    if (space.pressure_dof(v) >= 0) coefs[space.pressure_dof(v)] = 2 + space.mesh().vertex(v)[0];
+  const test::ScatteredStorage state(coefs);
+  int edge_nodes = 0;
+  for (int n = 0; n < space.n_nodes(); ++n) {
+    double x[3] = {0, 0, 0}, expected[3], value[3];
+    space.node_position(n, x);
+    g(x, expected);
+    space.nodal_value(state.view(), n, value);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(value[k], expected[k], 1e-12) << "node " << n;
+    EXPECT_NEAR(space.nodal_pressure(state.view(), n), 2 + x[0], 1e-12) << "node " << n;
+    edge_nodes += space.is_vertex_node(n) ? 0 : 1;
+  }
+  EXPECT_GT(edge_nodes, 0);
 }
 
 }  // namespace
