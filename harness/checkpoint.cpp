@@ -5,6 +5,9 @@
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
+
+#include <mpi.h>
 
 #include "common/error.hpp"
 
@@ -20,7 +23,7 @@ constexpr char kMagicFormat2[8] = {'S', 'T', 'I', 'C', 'K', 'P', 'T', '2'};
 
 class Writer {
 public:
-  explicit Writer(std::ofstream& out) : out_(out) {}
+  explicit Writer(std::ostream& out) : out_(out) {}
   void u64(std::uint64_t v) { out_.write(reinterpret_cast<const char*>(&v), sizeof v); }
   void f64(double v) { out_.write(reinterpret_cast<const char*>(&v), sizeof v); }
   void text(const std::string& s) {
@@ -33,12 +36,12 @@ public:
   }
 
 private:
-  std::ofstream& out_;
+  std::ostream& out_;
 };
 
 class Reader {
 public:
-  Reader(std::ifstream& in, std::string path) : in_(in), path_(std::move(path)) {}
+  Reader(std::istream& in, std::string path) : in_(in), path_(std::move(path)) {}
   std::uint64_t u64() {
     std::uint64_t v = 0;
     read(&v, sizeof v);
@@ -71,42 +74,32 @@ private:
     if (!in_) fail();
   }
   [[noreturn]] void fail() const { throw Error(fmt::format("checkpoint '{}' is truncated or damaged", path_)); }
-  std::ifstream& in_;
+  std::istream& in_;
   std::string path_;
 };
 
-}  // namespace
-
-void write_checkpoint(const std::string& path, const Checkpoint& c) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out) throw Error(fmt::format("cannot write checkpoint '{}'", path));
-    out.write(kMagic, sizeof kMagic);
-    Writer w(out);
-    w.text(c.scene);
-    w.u64(static_cast<std::uint64_t>(c.level));
-    w.u64(static_cast<std::uint64_t>(c.state.step));
-    w.f64(c.state.time);
-    w.doubles(c.state.u);
-    w.doubles(c.state.lambda);
-    w.u64(c.state.constraints.size());
-    for (const auto& s : c.state.constraints) w.doubles(s);
-    w.u64(static_cast<std::uint64_t>(c.tally.solves));
-    w.u64(static_cast<std::uint64_t>(c.tally.failures));
-    w.u64(static_cast<std::uint64_t>(c.cut_back.cut));
-    w.u64(static_cast<std::uint64_t>(c.cut_back.converged_at_cut));
-    w.u64(c.cut_back.probing ? 1 : 0);
-    w.u64(c.cut_back.wait.size());
-    for (int n : c.cut_back.wait) w.u64(static_cast<std::uint64_t>(n));
-    if (!out) throw Error(fmt::format("cannot write checkpoint '{}'", path));
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw Error(fmt::format("cannot write checkpoint '{}'", path));
+void write_to(std::ostream& out, const Checkpoint& c) {
+  out.write(kMagic, sizeof kMagic);
+  Writer w(out);
+  w.text(c.scene);
+  w.u64(static_cast<std::uint64_t>(c.level));
+  w.u64(static_cast<std::uint64_t>(c.state.step));
+  w.f64(c.state.time);
+  w.doubles(c.state.u);
+  w.doubles(c.state.lambda);
+  w.u64(c.state.constraints.size());
+  for (const auto& s : c.state.constraints) w.doubles(s);
+  w.u64(static_cast<std::uint64_t>(c.tally.solves));
+  w.u64(static_cast<std::uint64_t>(c.tally.failures));
+  w.u64(static_cast<std::uint64_t>(c.cut_back.cut));
+  w.u64(static_cast<std::uint64_t>(c.cut_back.converged_at_cut));
+  w.u64(c.cut_back.probing ? 1 : 0);
+  w.u64(c.cut_back.wait.size());
+  for (int n : c.cut_back.wait) w.u64(static_cast<std::uint64_t>(n));
 }
 
-Checkpoint read_checkpoint(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(fmt::format("no checkpoint '{}' to restart from", path));
+// `path` names the source in messages.
+Checkpoint read_from(std::istream& in, const std::string& path) {
   char magic[sizeof kMagic];
   in.read(magic, sizeof magic);
   const bool format1 = in && std::equal(magic, magic + sizeof magic, kMagicFormat1);
@@ -137,6 +130,58 @@ Checkpoint read_checkpoint(const std::string& path) {
     for (std::uint64_t k = 0; k < sizes; ++k) c.cut_back.wait.push_back(static_cast<int>(r.u64()));
   }
   return c;
+}
+
+void broadcast(MPI_Comm comm, std::string& bytes) {
+  unsigned long long size = bytes.size();
+  MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG_LONG, 0, comm);
+  bytes.resize(size);
+  MPI_Bcast(bytes.data(), static_cast<int>(size), MPI_CHAR, 0, comm);
+}
+
+}  // namespace
+
+void write_checkpoint(const std::string& path, const Checkpoint& c) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    if (!out) throw Error(fmt::format("cannot write checkpoint '{}'", path));
+    write_to(out, c);
+    if (!out) throw Error(fmt::format("cannot write checkpoint '{}'", path));
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw Error(fmt::format("cannot write checkpoint '{}'", path));
+}
+
+Checkpoint read_checkpoint(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(fmt::format("no checkpoint '{}' to restart from", path));
+  return read_from(in, path);
+}
+
+Checkpoint read_checkpoint(MPI_Comm comm, const std::string& path) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  // Rank 0 sends the checkpoint without u, or the message of its failure, as bytes.
+  std::string bytes, failure;
+  Checkpoint c;
+  if (rank == 0) {
+    try {
+      c = read_checkpoint(path);
+      Checkpoint rest = c;
+      rest.state.u.clear();
+      std::ostringstream out;
+      write_to(out, rest);
+      bytes = out.str();
+    } catch (const Error& e) {
+      failure = e.what();
+    }
+  }
+  broadcast(comm, failure);
+  if (!failure.empty()) throw Error(failure);
+  broadcast(comm, bytes);
+  if (rank == 0) return c;
+  std::istringstream in(bytes);
+  return read_from(in, path);
 }
 
 }  // namespace stiction::harness

@@ -7,6 +7,8 @@
 // level or size.
 #include <string>
 
+#include <mpi.h>
+
 #include "nonlinear/newton.hpp"
 
 namespace stiction::harness {
@@ -22,5 +24,10 @@ struct Checkpoint {
 void write_checkpoint(const std::string& path, const Checkpoint& c);
 // Throws stiction::Error (bad input) when the file is missing, truncated or not a checkpoint.
 Checkpoint read_checkpoint(const std::string& path);
+// The same on several MPI processes (collective): rank 0 reads the file, which the others
+// need not see (rank 0 alone writes it, perhaps on a disk of its own node), and sends them
+// everything but the state's u, which it keeps alone (QuasiStaticSolver::restore scatters
+// it); a failure is thrown on every process with rank 0's message.
+Checkpoint read_checkpoint(MPI_Comm comm, const std::string& path);
 
 }  // namespace stiction::harness

@@ -68,7 +68,7 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   if (restart && o.out_dir.empty()) out_dir = o.restart_dir;
   Checkpoint resume;
   if (restart) {
-    resume = read_checkpoint(o.restart_dir + "/checkpoint.bin");
+    resume = read_checkpoint(PETSC_COMM_WORLD, o.restart_dir + "/checkpoint.bin");
     if (resume.scene != scene->name || resume.level != scene->level)
       throw Error(fmt::format("checkpoint in '{}' is of scene '{}' level {}, not '{}' level {}", o.restart_dir,
                               resume.scene, resume.level, scene->name, scene->level));

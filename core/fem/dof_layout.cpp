@@ -61,6 +61,27 @@ void DofLayout::scatter(const std::vector<double>& values, Vec v) const {
   STICTION_PETSC(VecRestoreArray(v, &a));
 }
 
+void DofLayout::scatter_from_root(const std::vector<double>& values, Vec v) const {
+  if (identity()) {
+    scatter(values, v);
+    return;
+  }
+  PetscOwner<VecScatter, VecScatterDestroy> to_zero;
+  PetscVec whole;
+  STICTION_PETSC(VecScatterCreateToZero(v, to_zero.out(), whole.out()));
+  // v's present entries first, so that those the values do not reach keep theirs.
+  STICTION_PETSC(VecScatterBegin(to_zero, v, whole, INSERT_VALUES, SCATTER_FORWARD));
+  STICTION_PETSC(VecScatterEnd(to_zero, v, whole, INSERT_VALUES, SCATTER_FORWARD));
+  if (rank_ == 0) {
+    PetscScalar* a;
+    STICTION_PETSC(VecGetArray(whole, &a));
+    for (size_t k = 0; k < std::min<size_t>(values.size(), n_total_); ++k) a[global_[k]] = values[k];
+    STICTION_PETSC(VecRestoreArray(whole, &a));
+  }
+  STICTION_PETSC(VecScatterBegin(to_zero, whole, v, INSERT_VALUES, SCATTER_REVERSE));
+  STICTION_PETSC(VecScatterEnd(to_zero, whole, v, INSERT_VALUES, SCATTER_REVERSE));
+}
+
 void DofLayout::gather(Vec v, std::vector<double>& values) const { gather_with(v, values, false); }
 
 void DofLayout::gather_on_root(Vec v, std::vector<double>& values) const { gather_with(v, values, true); }

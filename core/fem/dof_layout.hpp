@@ -48,6 +48,10 @@ public:
   // The owned entries of v from app-ordered values (values[k] is unknown k; values may be
   // shorter than the system: the rest of v is left as it is).
   void scatter(const std::vector<double>& values, Vec v) const;
+  // scatter's counterpart from rank 0: the owned entries of v from app-ordered values that
+  // rank 0 alone holds (values on the other ranks are not read; shorter values leave the
+  // rest of v as it is).
+  void scatter_from_root(const std::vector<double>& values, Vec v) const;
   // Every entry of v on every rank, in app order.
   void gather(Vec v, std::vector<double>& values) const;
   // Every entry of v in app order on rank 0; values is left empty on the other ranks (what

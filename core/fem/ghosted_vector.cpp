@@ -86,6 +86,15 @@ void GhostedVector::assign_whole(const std::vector<double>& whole) {
     if (map[a] >= 0) storage_[static_cast<size_t>(map[a])] = whole[a];
 }
 
+void GhostedVector::assign_from_root(const std::vector<double>& whole) {
+  if (pattern_->layout().identity()) {
+    assign_whole(whole);
+    return;
+  }
+  pattern_->layout().scatter_from_root(whole, vec());
+  update_ghosts();
+}
+
 std::vector<double> GhostedVector::whole() const {
   std::vector<double> out;
   pattern_->layout().gather(vec(), out);

@@ -59,6 +59,9 @@ public:
   void add_ghosts_to_owners();
   // Every held entry from an app-ordered whole vector (the same on every process).
   void assign_whole(const std::vector<double>& whole);
+  // The same from a whole vector that process 0 alone need hold (collective; a shorter
+  // one leaves the rest as it is).
+  void assign_from_root(const std::vector<double>& whole);
   // The whole vector in app order on every process (from the owned entries).
   std::vector<double> whole() const;
   // The same on process 0 only (empty on the others).

@@ -2,8 +2,12 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <limits>
+
+#include <scotch.h>  // after <cstdint> and <cstdio>, which it needs
 
 #include "common/petsc.hpp"
 
@@ -80,6 +84,10 @@ MeshPartition partition_cells(MPI_Comm comm, const mesh::Mesh& mesh) {
   // run, change from run to run; on one thread it is the same every time (a setting in the
   // environment wins).
   setenv("SCOTCH_PTHREAD_NUMBER", "1", 0);
+  // Scotch's random state lives as long as the process and each partition draws from it:
+  // reset, the partition of a graph is the same at every call of one process (tests build
+  // several solvers) and the same as in a fresh process.
+  SCOTCH_randomReset();
   const PetscErrorCode ierr = MatPartitioningApply(part, destination.out());
   MatPartitioningType type = nullptr;
   if (!ierr) MatPartitioningGetType(part, &type);

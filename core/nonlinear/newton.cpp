@@ -514,16 +514,17 @@ void QuasiStaticSolver::restore(const Snapshot& s) {
 
 void QuasiStaticSolver::restore(const State& s) {
   const auto n_u = static_cast<size_t>(problem_.space->n_dofs());
-  if (s.u.size() != n_u || s.lambda.size() != lambda_.size() || s.constraints.size() != constraints_.size())
+  unsigned long long u_size = s.u.size();  // process 0's
+  MPI_Bcast(&u_size, 1, MPI_UNSIGNED_LONG_LONG, 0, layout_.comm());
+  if (u_size != n_u || s.lambda.size() != lambda_.size() || s.constraints.size() != constraints_.size())
     throw Error(fmt::format("a saved state of {} displacement unknowns, {} multipliers and {} constraints does not fit "
                             "this problem ({}, {}, {})",
-                            s.u.size(), s.lambda.size(), s.constraints.size(), n_u, lambda_.size(),
-                            constraints_.size()));
+                            u_size, s.lambda.size(), s.constraints.size(), n_u, lambda_.size(), constraints_.size()));
   if (s.step < 0 || s.step > problem_.n_steps())
     throw Error(fmt::format("a saved state at load step {} does not fit a problem of {} steps", s.step,
                             problem_.n_steps()));
   constraints_.restore_state(s.constraints);
-  u_.assign_whole(s.u);
+  u_.assign_from_root(s.u);
   lambda_ = s.lambda;
   time_ = s.time;
   completed_step_ = s.step;

@@ -164,8 +164,9 @@ public:
                               int last_step = -1);
 
   // What a converged state carries into the next increment, whole: what a checkpoint keeps.
-  // state() is collective and gathers u in app order on process 0 only (u is empty on the
-  // others); restore() takes the whole state on every process.
+  // state() and restore() are collective: state() gathers u in app order on process 0 only
+  // (u is empty on the others), restore() reads u on process 0 only (it sends each process
+  // its part) and the rest on every process.
   struct State {
     int step = 0;      // the last load step completed
     double time = 0;   // its pseudo-time (or of the last converged part of the next step)
@@ -297,6 +298,9 @@ private:
   fem::DofLayout layout_;         // the Newton system's numbering across ranks
   NewtonSystemBuilder builder_;
   std::shared_ptr<const fem::GhostPattern> pattern_;  // what this process holds of u
+  // Over the whole layout, so that the increment copies in whole: its multiplier entries
+  // follow the increments but nothing reads them (the multipliers are lambda_), and a
+  // restored state leaves them zero.
   fem::GhostedVector u_;
   std::vector<double> lambda_;  // contact multipliers (augmented unknowns n_u..), whole
   // Each process's share of the contact forces before they are summed into their owners'

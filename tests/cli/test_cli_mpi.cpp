@@ -402,6 +402,12 @@ TEST_F(StictionUnderMpirun, BadInputOnTwoProcessesGivesOneMessage) {
   EXPECT_EQ(missing.exit_code, kExitInput) << missing.err;
   EXPECT_EQ(missing.error_lines().size(), 1u) << missing.err;
 
+  // Rank 0 alone reads a checkpoint: the others learn of its absence from it.
+  const CliRun no_checkpoint = run(2, {"solve", "cantilever-2d", "--quiet", "--restart", (dir_ / "nowhere").string()});
+  EXPECT_EQ(no_checkpoint.exit_code, kExitInput) << no_checkpoint.err;
+  ASSERT_EQ(no_checkpoint.error_lines().size(), 1u) << no_checkpoint.err;
+  EXPECT_NE(no_checkpoint.error_lines()[0].find("no checkpoint"), std::string::npos) << no_checkpoint.err;
+
   const CliRun unknown_option = run(2, {"solve", "cantilever-2d", "--no-such-option"});
   EXPECT_EQ(unknown_option.exit_code, kExitInput) << unknown_option.err;
   EXPECT_EQ(unknown_option.err.find("no-such-option"), unknown_option.err.rfind("no-such-option"))
