@@ -235,20 +235,34 @@ TEST_P(DistributedContact, EachProcessComputesItsShareOnce) {
   EXPECT_LT(max_difference(r_c_shared, r_c_alone), 1e-12 * std::max(max_abs(r_c_alone), 1e-300));
 }
 
+// A contact scene after its first load step, solved on both processes.
+class DistributedState : public DistributedContact {
+protected:
+  void SetUp() override {
+    MPI_Comm_rank(PETSC_COMM_WORLD, &rank_);
+    scene_ = harness::open_scene(GetParam(), 0, {});
+    solver_ = solvers::create_solver("lu-mumps", PETSC_COMM_WORLD);
+    newton_ = std::make_unique<nonlinear::QuasiStaticSolver>(PETSC_COMM_WORLD, scene_->problem, scene_->newton,
+                                                             *solver_);
+    const auto steps = newton_->run({}, 1, 1);
+    ASSERT_FALSE(steps.empty());
+    ASSERT_TRUE(steps.back().converged());
+  }
+  int rank_ = 0;
+  std::unique_ptr<scene::Scene> scene_;
+  std::unique_ptr<nonlinear::LinearSolver> solver_;
+  std::unique_ptr<nonlinear::QuasiStaticSolver> newton_;
+};
+
 // What each process writes its output from without a gather: the state it holds covers the
 // nodes of its own cells (its VTU piece) and the contact surfaces (contact.csv, written by
 // rank 0), with the gathered state's values; the checkpoint's state is whole on rank 0 only.
 // (An own cell whose nodes all lie in cells without a node of this process would be covered
 // by neither its row cells nor the surfaces; the built-in partitions have none.)
-TEST_P(DistributedContact, HeldStateCoversOwnCellsAndContactSurfaces) {
-  int rank = 0;
-  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-  auto scene = harness::open_scene(GetParam(), 0, {});
-  auto solver = solvers::create_solver("lu-mumps", PETSC_COMM_WORLD);
-  nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, scene->problem, scene->newton, *solver);
-  const auto steps = newton.run({}, 1, 1);
-  ASSERT_FALSE(steps.empty());
-  ASSERT_TRUE(steps.back().converged());
+TEST_P(DistributedState, HeldStateCoversOwnCellsAndContactSurfaces) {
+  const int rank = rank_;
+  const auto& scene = scene_;
+  const nonlinear::QuasiStaticSolver& newton = *newton_;
   const fem::FieldSpace& space = *scene->problem.space;
   const std::vector<double> whole = newton.displacement();
   const fem::StateView held = newton.held_displacement();
@@ -277,15 +291,10 @@ TEST_P(DistributedContact, HeldStateCoversOwnCellsAndContactSurfaces) {
 // (owned unknowns and ghosts) and every process the multipliers and contact states: a fresh
 // solver then holds the state of the one that saved it. A u of the wrong size, known to
 // process 0 alone, is refused on every process.
-TEST_P(DistributedContact, StateRestoresFromProcessZeroAlone) {
-  int rank = 0;
-  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-  auto scene = harness::open_scene(GetParam(), 0, {});
-  auto solver = solvers::create_solver("lu-mumps", PETSC_COMM_WORLD);
-  nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, scene->problem, scene->newton, *solver);
-  const auto steps = newton.run({}, 1, 1);
-  ASSERT_FALSE(steps.empty());
-  ASSERT_TRUE(steps.back().converged());
+TEST_P(DistributedState, StateRestoresFromProcessZeroAlone) {
+  const int rank = rank_;
+  const auto& scene = scene_;
+  const nonlinear::QuasiStaticSolver& newton = *newton_;
   const auto saved = newton.state();
   EXPECT_EQ(saved.u.empty(), rank != 0);  // EXPECT: a check of one process must not skip the collectives below
 
@@ -317,13 +326,14 @@ TEST_P(DistributedContact, StateRestoresFromProcessZeroAlone) {
 }
 
 // Deformable master in 2D and 3D (self-contact), rigid plane with friction.
-INSTANTIATE_TEST_SUITE_P(Scenes, DistributedContact,
-                         ::testing::Values("self-contact-2d", "hertz-spheres-3d", "sliding-block-2d"),
-                         [](const auto& info) {
-                           std::string n = info.param;
-                           std::replace(n.begin(), n.end(), '-', '_');
-                           return n;
-                         });
+const char* const kContactScenes[] = {"self-contact-2d", "hertz-spheres-3d", "sliding-block-2d"};
+std::string scene_test_name(const ::testing::TestParamInfo<const char*>& info) {
+  std::string n = info.param;
+  std::replace(n.begin(), n.end(), '-', '_');
+  return n;
+}
+INSTANTIATE_TEST_SUITE_P(Scenes, DistributedContact, ::testing::ValuesIn(kContactScenes), scene_test_name);
+INSTANTIATE_TEST_SUITE_P(Scenes, DistributedState, ::testing::ValuesIn(kContactScenes), scene_test_name);
 
 // PT-Scotch splits the cells the same way every time: on several threads (Scotch 7's
 // default) their race changed the partition, and so every Krylov count of a distributed
