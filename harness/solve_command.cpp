@@ -97,8 +97,9 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
                           resume.state.time);
   nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, scene->problem, scene->newton, *solver);
   if (processes > 1)
-    header += fmt::format("# MPI processes: {} (cells split by {}; the mesh whole on each, the Newton state held per process)\n", processes,
-                          newton.partition().partitioner);
+    header += fmt::format(
+        "# MPI processes: {} (cells split by {}; the mesh whole on each, the Newton state held per process)\n",
+        processes, newton.partition().partitioner);
   const bool verbose = !o.quiet && writer;
   if (verbose) fmt::print(stderr, "{}", header);
 

@@ -8,8 +8,9 @@
 // On several MPI processes (comm) each holds the whole mesh, the multipliers and the
 // contact states, and of the displacement (and pressure) state only its owned unknowns and
 // the ghosts it reads (fem::GhostedVector: the nodes of the cells that reach its owned rows,
-// of its own cells, whose output it writes, and of the contact surfaces). Each process assembles those cells, so its owned rows of the
-// residual are complete; the contact forces are summed into their owners' rows; the norms
+// of its own cells, whose output it writes, and of the contact surfaces). Each process
+// assembles the cells that reach its rows, so its owned rows of the residual are complete;
+// the contact forces are summed into their owners' rows; the norms
 // every decision reads are reduced over processes to the same bits everywhere, so every
 // process takes every decision alike. The backend solves the Newton system distributed
 // (fem::DofLayout's numbering), each process takes its owned part of the increment, and the
