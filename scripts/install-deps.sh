@@ -7,6 +7,7 @@ packages=(
   build-essential cmake pkg-config git
   petsc-dev                 # PETSc 3.18 with MUMPS, hypre, SuiteSparse, SuperLU
   libhypre-dev              # hypre's own header and library (pulled in by petsc-dev; used directly)
+  libscotch-dev             # Scotch's header and library (pulled in by petsc-dev; its random state is reset directly)
   libopenblas0-pthread      # mandatory: reference BLAS makes MUMPS 3-9x slower
   libopenmpi-dev openmpi-bin
   libeigen3-dev
