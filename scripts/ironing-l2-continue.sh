@@ -8,9 +8,11 @@
 # start: a run directory without a checkpoint gets the report's (checkpoints/schur-amg-
 # <variant>.bin with its steps.csv and iterations.csv); each run restarts from its directory
 # in the background, one core each (copy the binary out of build/ first, so that a rebuild does
-# not change it mid-run). snapshot: each run is stopped (SIGSTOP) while its checkpoint and
-# CSVs are copied into the report, then continued; then the force comparison with lu-mumps
-# and the by-level figures are printed for the README.
+# not change it mid-run; each run gets its own session, so that a SIGSTOP after this script
+# has ended does not leave it a stopped orphan, which the kernel hangs up). snapshot: each
+# run is stopped (SIGSTOP) while its checkpoint and CSVs are copied into the report, then
+# continued; then the force comparison with lu-mumps and the by-level figures are printed
+# for the README.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 report=$here/reports/ironing-2d-L2
@@ -35,7 +37,7 @@ case "${1:-}" in
       fi
       [[ -f $dir/run.log ]] && cat "$dir/run.log" >> "$dir/run-earlier.log"
       (cd "$dir" && OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 GLIBC_TUNABLES=glibc.malloc.hugetlb=1 \
-        nohup "$bin" solve "${scene[$v]}" --level 2 --solver schur-amg --no-vtu --out "$dir" --restart "$dir" \
+        setsid nohup "$bin" solve "${scene[$v]}" --level 2 --solver schur-amg --no-vtu --out "$dir" --restart "$dir" \
         > "$dir/run.log" 2>&1 &)
       echo "$v: started in $dir"
     done
@@ -57,7 +59,7 @@ case "${1:-}" in
     python3 "$here/scripts/ironing-solve-figures.py" "$here/reports"
     ;;
   *)
-    sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'
+    sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'
     exit 2
     ;;
 esac
