@@ -167,11 +167,12 @@ Checkpoint read_checkpoint(MPI_Comm comm, const std::string& path) {
   if (rank == 0) {
     try {
       c = read_checkpoint(path);
-      Checkpoint rest = c;
-      rest.state.u.clear();
+      std::vector<double> u = std::move(c.state.u);  // kept out of the bytes, not copied
+      c.state.u.clear();
       std::ostringstream out;
-      write_to(out, rest);
+      write_to(out, c);
       bytes = out.str();
+      c.state.u = std::move(u);
     } catch (const Error& e) {
       failure = e.what();
     }
