@@ -11,6 +11,7 @@
 
 #include "support/block_view_checks.hpp"
 #include "support/schur_helpers.hpp"  // StepSystem
+#include "support/test_names.hpp"
 
 namespace {
 
@@ -48,11 +49,7 @@ TEST_P(DistributedBlockView, ProductsAndLocalSweepsMatchCopies) {
 
 // 3D contact (rows of three, multiplier columns to skip) and 2D.
 INSTANTIATE_TEST_SUITE_P(Scenes, DistributedBlockView, ::testing::Values("hertz-sphere-3d", "cantilever-2d"),
-                         [](const auto& info) {
-                           std::string n = info.param;
-                           std::replace(n.begin(), n.end(), '-', '_');
-                           return n;
-                         });
+                         [](const auto& info) { return test::identifier(info.param); });
 
 TEST(DistributedBlockView, HierarchicalPreconditionerHoldsViewsOnSeveralProcesses) {
   test::StepSystem s("cantilever-2d");

@@ -26,6 +26,7 @@
 #include "nonlinear/newton.hpp"
 #include "multiplier_schur_parts.hpp"
 #include "registry.hpp"
+#include "support/test_names.hpp"
 
 namespace {
 
@@ -177,11 +178,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DistributedSystem,
                                            Case{"self-contact-2d", "lu-mumps", 3},
                                            Case{"hertz-sphere-3d", "lu-mumps", 3},
                                            Case{"cook-membrane-3d", "lu-mumps", 1}),
-                         [](const auto& info) {
-                           std::string n = info.param.scene;
-                           std::replace(n.begin(), n.end(), '-', '_');
-                           return n;
-                         });
+                         [](const auto& info) { return test::identifier(info.param.scene); });
 
 // Distributed, each process evaluates the contact of its own slave nodes: the Jacobian
 // entries the processes compute together are the one-process entries, each computed once
@@ -327,11 +324,7 @@ TEST_P(DistributedState, StateRestoresFromProcessZeroAlone) {
 
 // Deformable master in 2D and 3D (self-contact), rigid plane with friction.
 const char* const kContactScenes[] = {"self-contact-2d", "hertz-spheres-3d", "sliding-block-2d"};
-std::string scene_test_name(const ::testing::TestParamInfo<const char*>& info) {
-  std::string n = info.param;
-  std::replace(n.begin(), n.end(), '-', '_');
-  return n;
-}
+std::string scene_test_name(const ::testing::TestParamInfo<const char*>& info) { return test::identifier(info.param); }
 INSTANTIATE_TEST_SUITE_P(Scenes, DistributedContact, ::testing::ValuesIn(kContactScenes), scene_test_name);
 INSTANTIATE_TEST_SUITE_P(Scenes, DistributedState, ::testing::ValuesIn(kContactScenes), scene_test_name);
 

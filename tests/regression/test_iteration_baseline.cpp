@@ -16,6 +16,7 @@
 #include "builtin_scenes.hpp"
 #include "csv_table.hpp"
 #include "registry.hpp"
+#include "support/test_names.hpp"
 
 namespace stiction {
 namespace {
@@ -91,11 +92,7 @@ TEST_P(IterationBaseline, Level0DoesNotRegress) {
   }
 }
 
-std::string test_name(const ::testing::TestParamInfo<std::string>& info) {
-  std::string name = info.param;
-  std::replace(name.begin(), name.end(), '-', '_');
-  return name;
-}
+std::string test_name(const ::testing::TestParamInfo<std::string>& info) { return test::identifier(info.param); }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, IterationBaseline, ::testing::ValuesIn(baseline_scenes()), test_name);
 
