@@ -11,8 +11,10 @@
 #include "fem/field_space.hpp"
 #include "mesh/gmsh_io.hpp"
 #include "mesh/grooved_block.hpp"
+#include "mesh/local_mesh.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/structured_tube.hpp"
+#include "support/mesh_checks.hpp"
 
 namespace stiction::mesh {
 namespace {
@@ -319,6 +321,27 @@ TEST(Generators, TubeVerticesLieOnTheCylinders) {
   EXPECT_EQ(checked["side0"], 2 * 2 * 4);
   EXPECT_EQ(checked["side1"], 2 * 2 * 4);
   EXPECT_EQ(checked.size(), 6u);
+}
+
+// On one process the part is the whole mesh, and refining it in parts is mesh::refine, ids,
+// coordinates and curved edges alike (the tube's cylinders are curved). The np = 2 version:
+// tests/mpi/test_local_mesh.cpp.
+TEST(LocalMesh, OneProcessPartIsTheWholeMeshAndRefinesAsIt) {
+  TubeSpec spec;
+  spec.inner_radius = 11.2, spec.thickness = 0.8, spec.length = 50;
+  spec.axis = 0, spec.center = {0, 24, 0}, spec.angles_degrees = {0, 180}, spec.cells = {2, 6, 3};
+  const Mesh whole = structured_tube(spec);
+  ASSERT_TRUE(whole.is_curved());
+  LocalMesh part = local_part(whole, std::vector<int>(whole.n_cells(), 0), 0);
+  test::expect_same_mesh(part.mesh, whole);
+  EXPECT_EQ(part.n_own_cells, whole.n_cells());
+  for (int level = 1; level <= 2; ++level) {
+    part = refine_parts(MPI_COMM_SELF, part);
+    const Mesh fine = refine(whole, level);
+    test::expect_same_mesh(part.mesh, fine);
+    EXPECT_EQ(part.n_global_vertices, fine.n_vertices());
+    EXPECT_EQ(part.n_own_cells, fine.n_cells());
+  }
 }
 
 // inner_split names the inner cylinder in two halves at the angle given: every "inner0"

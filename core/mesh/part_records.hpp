@@ -1,0 +1,49 @@
+#pragma once
+// What the mesh parts are built from (mesh/local_mesh.cpp) and exchanged as (refinement in
+// parts, mesh/refine_parts.cpp): cells, vertices, facets and curved edges by global ids.
+#include <array>
+#include <vector>
+
+#include "mesh/local_mesh.hpp"
+
+namespace stiction::mesh::detail {
+
+// A part described by global ids, in any order and with repeats, before it is numbered
+// locally: what a process knows of its own cells and receives of its neighbours'.
+struct CellRecord {
+  int id, owner, tag;
+  std::array<int, 4> v;  // global vertex ids (dim + 1 used)
+};
+struct FacetRecord {
+  int id, tag;
+  std::array<int, 3> v;  // global vertex ids (dim used), in the facet's order
+};
+struct VertexRecord {
+  int id;
+  std::array<double, 3> x;
+};
+struct MidpointRecord {
+  std::array<int, 2> edge;  // global (lo, hi)
+  std::array<double, 3> x;
+};
+struct PartRecords {
+  std::vector<CellRecord> cells;
+  std::vector<VertexRecord> vertices;
+  std::vector<FacetRecord> facets;
+  std::vector<MidpointRecord> midpoints;
+};
+
+// Process `rank`'s part out of records that hold at least its own cells, their vertex layer
+// and everything on those cells: the records of other cells are dropped. Tag names and the
+// dimension come from `names`; the global counts are left to the caller.
+LocalMesh number_part(PartRecords& r, const Mesh& names, int rank);
+
+// The n <= 3 vertex ids sorted, padded in front with -1: the same key for a facet and for
+// the face of a cell it lies on.
+std::array<int, 3> sorted_key(const int* v, int n);
+// The faces of a cell with vertices v (dim + 1 of them), as sorted keys.
+std::vector<std::array<int, 3>> face_keys(const int* v, int dim);
+// The position of a global id in the part's ascending ids (an internal error if absent).
+int local_index(const std::vector<int>& sorted_ids, int id);
+
+}  // namespace stiction::mesh::detail

@@ -1,0 +1,160 @@
+// Run under `mpirun -n 2` with the other distributed tests. A mesh divided among the
+// processes and refined in parts (mesh::refine_parts) is the refined whole mesh divided the
+// same way: the same global ids, coordinates bit for bit, tagged facets and curved edges, on
+// curved 2D and 3D scenes and on the block with strips (self-contact facets in its grooves);
+// and a part's edges, nodes and pressure dofs get the whole mesh's numbers.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "builtin_scenes.hpp"
+#include "fem/field_space.hpp"
+#include "fem/mesh_partition.hpp"
+#include "fem/part_numbering.hpp"
+#include "mesh/local_mesh.hpp"
+#include "scene/scene.hpp"
+#include "support/mesh_checks.hpp"
+#include "support/test_names.hpp"
+
+namespace {
+
+using namespace stiction;
+
+struct RefinedScene {
+  const char* name;
+  int levels;
+};
+std::ostream& operator<<(std::ostream& os, const RefinedScene& s) { return os << s.name << " to level " << s.levels; }
+
+// Every edge of the part, ghosts' included, has the id the whole mesh's edge list gives it.
+void expect_whole_edge_numbering(const mesh::LocalMesh& part, const mesh::Mesh& whole) {
+  const mesh::EdgeTopology local = mesh::build_edges(part.mesh), all = mesh::build_edges(whole);
+  const mesh::GlobalEdges ids = mesh::global_edge_ids(PETSC_COMM_WORLD, part, local);
+  EXPECT_EQ(ids.n_global, all.n_edges());
+  ASSERT_EQ(ids.id.size(), local.edges.size());
+  int wrong = 0;
+  for (size_t e = 0; e < local.edges.size(); ++e)
+    wrong += ids.id[e] != all.find(part.vertex_ids[local.edges[e][0]], part.vertex_ids[local.edges[e][1]]);
+  EXPECT_EQ(wrong, 0) << "of " << local.edges.size() << " edges";
+  // Some edges lie away from the own cells (their low end's star is not in the part): those
+  // are numbered by the ghost cell's owner, and the check above covers them.
+  std::vector<char> own_vertex(static_cast<size_t>(part.mesh.n_vertices()), 0);
+  for (int c = 0; c < part.n_own_cells; ++c)
+    for (int k = 0; k < part.mesh.vertices_per_cell(); ++k) own_vertex[part.mesh.cell(c)[k]] = 1;
+  int away = 0;
+  for (const auto& edge : local.edges) away += !own_vertex[edge[0]];
+  EXPECT_GT(away, 0);
+}
+
+// The part's cells, straight from the whole mesh: the own ones, then every other cell with a
+// vertex of an own cell, each group ascending.
+std::vector<int> own_cells_and_vertex_layer(const mesh::Mesh& whole, const std::vector<int>& owner, int rank) {
+  std::vector<char> own_vertex(static_cast<size_t>(whole.n_vertices()), 0);
+  std::vector<int> cells;
+  for (int c = 0; c < whole.n_cells(); ++c)
+    if (owner[c] == rank) {
+      cells.push_back(c);
+      for (int k = 0; k < whole.vertices_per_cell(); ++k) own_vertex[whole.cell(c)[k]] = 1;
+    }
+  for (int c = 0; c < whole.n_cells(); ++c)
+    if (owner[c] != rank && std::any_of(whole.cell(c), whole.cell(c) + whole.vertices_per_cell(), [&](int v) { return own_vertex[v]; }))
+      cells.push_back(c);
+  return cells;
+}
+
+class RefinedInParts : public ::testing::TestWithParam<RefinedScene> {};
+
+// No ASSERT before a collective: a process that returned early would leave the other in it.
+TEST_P(RefinedInParts, IsTheRefinedWholeMeshDivided) {
+  const auto [name, levels] = GetParam();
+  const auto scene = scene::build_scene(harness::builtin_scenes().at(name), name, ".", 0);
+  mesh::Mesh whole = scene->mesh;
+  const fem::MeshPartition partition = fem::partition_cells(PETSC_COMM_WORLD, whole);
+  EXPECT_EQ(partition.size, 2) << "run under mpirun -n 2";
+  std::vector<int> owner = partition.cell_owner;
+  mesh::LocalMesh part = mesh::local_part(whole, owner, partition.rank);
+  const int children = whole.dim == 2 ? 4 : 8;
+  for (int level = 1; level <= levels; ++level) {
+    part = mesh::refine_parts(PETSC_COMM_WORLD, part);
+    whole = mesh::refine(whole);
+    std::vector<int> child_owner(static_cast<size_t>(whole.n_cells()));
+    for (int c = 0; c < whole.n_cells(); ++c) child_owner[c] = owner[c / children];
+    owner = std::move(child_owner);
+    SCOPED_TRACE("level " + std::to_string(level));
+    test::expect_same_part(part, mesh::local_part(whole, owner, partition.rank));
+    expect_whole_edge_numbering(part, whole);
+  }
+  EXPECT_TRUE(part.cell_ids == own_cells_and_vertex_layer(whole, owner, partition.rank));
+  // The parts are parts: each holds a ghost layer and less than the whole mesh, and their
+  // own cells add up to it.
+  EXPECT_GT(part.mesh.n_cells(), part.n_own_cells);
+  EXPECT_LT(part.mesh.n_cells(), whole.n_cells());
+  int own_total = 0;
+  MPI_Allreduce(&part.n_own_cells, &own_total, 1, MPI_INT, MPI_SUM, PETSC_COMM_WORLD);
+  EXPECT_EQ(own_total, whole.n_cells());
+}
+
+const RefinedScene kRefinedScenes[] = {{"ironing-2d", 2}, {"hertz-spheres-3d", 2}, {"block-strips", 1}};
+
+INSTANTIATE_TEST_SUITE_P(Scenes, RefinedInParts, ::testing::ValuesIn(kRefinedScenes),
+                         [](const auto& info) { return test::identifier(info.param.name); });
+
+// A part's own space numbers its nodes (vertices, then P2 edges) and its pressure dofs as
+// the whole mesh's space does.
+class NumberedInParts : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(NumberedInParts, AsTheWholeSpaceNumbersThem) {
+  const char* name = GetParam();
+  const auto scene = scene::build_scene(harness::builtin_scenes().at(name), name, ".", 0);
+  const fem::FieldSpace& whole = *scene->space;
+  const fem::MeshPartition partition = fem::partition_cells(PETSC_COMM_WORLD, scene->mesh);
+  const mesh::LocalMesh part = mesh::local_part(scene->mesh, partition.cell_owner, partition.rank);
+  std::vector<char> has_pressure;
+  for (int v = 0; whole.has_pressure() && v < part.mesh.n_vertices(); ++v)
+    has_pressure.push_back(whole.pressure_dof(part.vertex_ids[v]) >= 0);
+  const fem::FieldSpace space(part.mesh, whole.kind(), has_pressure);
+  const fem::PartNumbering n = fem::number_part_space(PETSC_COMM_WORLD, part, space);
+
+  EXPECT_EQ(n.n_global_nodes, whole.n_nodes());
+  EXPECT_EQ(n.n_global_pressures, whole.n_pressure_dofs());
+  ASSERT_EQ(static_cast<int>(n.node.size()), space.n_nodes());
+  int wrong_nodes = 0, edge_nodes = 0;
+  for (int node = 0; node < space.n_nodes(); ++node) {
+    if (space.is_vertex_node(node)) {
+      wrong_nodes += n.node[node] != part.vertex_ids[node];
+      continue;
+    }
+    const auto& edge = space.edges().edges[node - space.n_vertices()];
+    const int e = whole.edges().find(part.vertex_ids[edge[0]], part.vertex_ids[edge[1]]);
+    wrong_nodes += n.node[node] != whole.n_vertices() + e;
+    ++edge_nodes;
+  }
+  EXPECT_EQ(wrong_nodes, 0) << "of " << space.n_nodes() << " nodes";
+  EXPECT_GT(edge_nodes, 0);  // a P2 space
+  int wrong_pressures = 0, pressures = 0;
+  for (int v = 0; v < space.n_vertices(); ++v) {
+    if (space.pressure_dof(v) < 0) continue;
+    wrong_pressures += n.pressure[v] != whole.pressure_dof(part.vertex_ids[v]) - whole.n_displacement_dofs();
+    ++pressures;
+  }
+  EXPECT_EQ(wrong_pressures, 0) << "of " << pressures << " pressures";
+  EXPECT_EQ(pressures > 0, whole.has_pressure());
+}
+
+const char* const kNumberedScenes[] = {"mooney-rivlin-block", "block-strips-mr", "hertz-spheres-3d"};
+
+INSTANTIATE_TEST_SUITE_P(Scenes, NumberedInParts, ::testing::ValuesIn(kNumberedScenes),
+                         [](const auto& info) { return test::identifier(info.param); });
+
+// The curved scenes' meshes are curved, so the test compares curved edges too.
+TEST(RefinedInPartsScenes, CurvedOnesAreCurved) {
+  for (const char* name : {"ironing-2d", "hertz-spheres-3d"}) {
+    const auto scene = scene::build_scene(harness::builtin_scenes().at(name), name, ".", 0);
+    EXPECT_TRUE(scene->mesh.is_curved()) << name;
+  }
+}
+
+}  // namespace
