@@ -1,0 +1,62 @@
+// Mesh refinement whole and in parts, on one process: what the parts' bookkeeping (records by
+// global id, the edge numbering's scan, the ghost exchange) costs beside mesh::refine, which
+// it reproduces bit for bit. The block with strips' level-0 mesh (Gmsh, built once) refined
+// once or twice.
+//
+//   build/benchmarks/bench_mesh [--benchmark_filter=...]
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <vector>
+
+#include "builtin_scenes.hpp"
+#include "common/petsc.hpp"
+#include "mesh/local_mesh.hpp"
+
+namespace {
+
+using namespace stiction;
+
+const mesh::Mesh& block_strips_level0() {
+  static const std::unique_ptr<scene::Scene> s = harness::open_scene("block-strips", 0);
+  return s->mesh;
+}
+
+void BM_RefineWhole(benchmark::State& state) {
+  const mesh::Mesh& coarse = block_strips_level0();
+  int cells = 0;
+  for (auto _ : state) {
+    const mesh::Mesh fine = mesh::refine(coarse, static_cast<int>(state.range(0)));
+    cells = fine.n_cells();
+    benchmark::DoNotOptimize(fine.coords.data());
+  }
+  state.counters["cells"] = cells;
+  state.counters["cells/s"] = benchmark::Counter(cells, benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_RefineWhole)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_RefineInParts(benchmark::State& state) {
+  const mesh::Mesh& coarse = block_strips_level0();
+  const mesh::LocalMesh part = mesh::local_part(coarse, std::vector<int>(coarse.n_cells(), 0), 0);
+  int cells = 0;
+  for (auto _ : state) {
+    mesh::LocalMesh fine = mesh::refine_parts(PETSC_COMM_WORLD, part);
+    for (int level = 2; level <= state.range(0); ++level) fine = mesh::refine_parts(PETSC_COMM_WORLD, fine);
+    cells = fine.mesh.n_cells();
+    benchmark::DoNotOptimize(fine.mesh.coords.data());
+  }
+  state.counters["cells"] = cells;
+  state.counters["cells/s"] = benchmark::Counter(cells, benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_RefineInParts)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  int pargc = 1;
+  PetscSession petsc(&pargc, &argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
