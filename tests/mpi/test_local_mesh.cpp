@@ -13,7 +13,9 @@
 #include "builtin_scenes.hpp"
 #include "fem/field_space.hpp"
 #include "fem/mesh_partition.hpp"
+#include "fem/dof_layout.hpp"
 #include "fem/part_numbering.hpp"
+#include "fem/part_ownership.hpp"
 #include "mesh/local_mesh.hpp"
 #include "scene/scene.hpp"
 #include "support/mesh_checks.hpp"
@@ -103,7 +105,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, RefinedInParts, ::testing::ValuesIn(kRefinedSce
                          [](const auto& info) { return test::identifier(info.param.name); });
 
 // A part's own space numbers its nodes (vertices, then P2 edges) and its pressure dofs as
-// the whole mesh's space does.
+// the whole mesh's space does, and owns and PETSc-numbers its unknowns as the whole mesh's
+// layout does.
 class NumberedInParts : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(NumberedInParts, AsTheWholeSpaceNumbersThem) {
@@ -142,6 +145,22 @@ TEST_P(NumberedInParts, AsTheWholeSpaceNumbersThem) {
   }
   EXPECT_EQ(wrong_pressures, 0) << "of " << pressures << " pressures";
   EXPECT_EQ(pressures > 0, whole.has_pressure());
+
+  // Ownership and PETSc's numbering as the whole mesh's layout gives them; the unknowns the
+  // part holds but does not own get theirs from their owners.
+  const fem::PartOwnership o = fem::own_part_unknowns(PETSC_COMM_WORLD, part, space, n);
+  const fem::DofLayout layout(PETSC_COMM_WORLD, whole, partition, {});
+  EXPECT_EQ(o.n_owned, layout.n_owned());
+  EXPECT_EQ(o.first_owned, layout.first_owned());
+  int wrong_owner = 0, wrong_index = 0, not_owned = 0;
+  for (size_t i = 0; i < o.app.size(); ++i) {
+    wrong_owner += static_cast<bool>(o.owned[i]) != layout.owns(o.app[i]);
+    wrong_index += o.petsc[i] != layout.global(o.app[i]);
+    not_owned += !o.owned[i];
+  }
+  EXPECT_EQ(wrong_owner, 0) << "of " << o.app.size() << " unknowns";
+  EXPECT_EQ(wrong_index, 0) << "of " << o.app.size() << " unknowns";
+  EXPECT_GT(not_owned, 0);
 }
 
 const char* const kNumberedScenes[] = {"mooney-rivlin-block", "block-strips-mr", "hertz-spheres-3d"};

@@ -1,0 +1,29 @@
+#pragma once
+// Which process owns each unknown of a mesh part's space, and PETSc's index of each, as
+// fem::DofLayout gives them on the whole mesh: a node belongs to the owner of the lowest-id
+// cell holding it and a pressure to its vertex's owner; PETSc numbers the unknowns process
+// by process, in app order (fem::PartNumbering's whole-space numbers) within each. A process
+// numbers the unknowns it owns and learns the others' indices from their owners through
+// PETSc's scalable application ordering (AOCreateMemoryScalable), so nothing of the size of
+// the whole system is held.
+#include <vector>
+
+#include <petscao.h>
+
+#include "fem/part_numbering.hpp"
+
+namespace stiction::fem {
+
+struct PartOwnership {
+  // Per dof of the part's space (its local dof order: node * dim + component, then the
+  // pressures): the whole-space (app) index, PETSc's index, and whether this process owns it.
+  std::vector<PetscInt> app, petsc;
+  std::vector<char> owned;
+  PetscInt n_owned = 0, first_owned = 0;
+};
+
+// Collective.
+PartOwnership own_part_unknowns(MPI_Comm comm, const mesh::LocalMesh& part, const FieldSpace& space,
+                                const PartNumbering& numbering);
+
+}  // namespace stiction::fem
