@@ -95,13 +95,3 @@ void BM_MatMult(benchmark::State& state) {
 BENCHMARK(BM_MatMult)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
-
-int main(int argc, char** argv) {
-  restart_with_huge_pages_for_mapped_blocks(argv);  // as stiction does: the same allocator
-  benchmark::Initialize(&argc, argv);
-  int pargc = 1;
-  PetscSession petsc(&pargc, &argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}

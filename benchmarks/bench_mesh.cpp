@@ -51,12 +51,3 @@ void BM_RefineInParts(benchmark::State& state) {
 BENCHMARK(BM_RefineInParts)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
-
-int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  int pargc = 1;
-  PetscSession petsc(&pargc, &argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
