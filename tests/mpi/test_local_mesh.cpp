@@ -6,6 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -14,6 +17,7 @@
 #include "fem/field_space.hpp"
 #include "fem/mesh_partition.hpp"
 #include "fem/dof_layout.hpp"
+#include "fem/elasticity_assembly.hpp"
 #include "fem/part_numbering.hpp"
 #include "fem/part_ownership.hpp"
 #include "mesh/local_mesh.hpp"
@@ -109,17 +113,34 @@ INSTANTIATE_TEST_SUITE_P(Scenes, RefinedInParts, ::testing::ValuesIn(kRefinedSce
 // layout does.
 class NumberedInParts : public ::testing::TestWithParam<const char*> {};
 
+// A scene's level-0 mesh divided between the processes, each with its part's own space (its
+// pressure where the whole space has one) and that space's whole-space numbering. Not to be
+// moved: the space points into the part.
+struct SceneInParts {
+  std::unique_ptr<scene::Scene> scene;
+  fem::MeshPartition partition;
+  mesh::LocalMesh part;
+  std::unique_ptr<fem::FieldSpace> space;
+  fem::PartNumbering numbering;
+  explicit SceneInParts(const char* name) {
+    scene = scene::build_scene(harness::builtin_scenes().at(name), name, ".", 0);
+    const fem::FieldSpace& whole = *scene->space;
+    partition = fem::partition_cells(PETSC_COMM_WORLD, scene->mesh);
+    part = mesh::local_part(scene->mesh, partition.cell_owner, partition.rank);
+    std::vector<char> has_pressure;
+    for (int v = 0; whole.has_pressure() && v < part.mesh.n_vertices(); ++v)
+      has_pressure.push_back(whole.pressure_dof(part.vertex_ids[v]) >= 0);
+    space = std::make_unique<fem::FieldSpace>(part.mesh, whole.kind(), has_pressure);
+    numbering = fem::number_part_space(PETSC_COMM_WORLD, part, *space);
+  }
+};
+
 TEST_P(NumberedInParts, AsTheWholeSpaceNumbersThem) {
-  const char* name = GetParam();
-  const auto scene = scene::build_scene(harness::builtin_scenes().at(name), name, ".", 0);
-  const fem::FieldSpace& whole = *scene->space;
-  const fem::MeshPartition partition = fem::partition_cells(PETSC_COMM_WORLD, scene->mesh);
-  const mesh::LocalMesh part = mesh::local_part(scene->mesh, partition.cell_owner, partition.rank);
-  std::vector<char> has_pressure;
-  for (int v = 0; whole.has_pressure() && v < part.mesh.n_vertices(); ++v)
-    has_pressure.push_back(whole.pressure_dof(part.vertex_ids[v]) >= 0);
-  const fem::FieldSpace space(part.mesh, whole.kind(), has_pressure);
-  const fem::PartNumbering n = fem::number_part_space(PETSC_COMM_WORLD, part, space);
+  const SceneInParts s(GetParam());
+  const fem::FieldSpace& whole = *s.scene->space;
+  const fem::FieldSpace& space = *s.space;
+  const mesh::LocalMesh& part = s.part;
+  const fem::PartNumbering& n = s.numbering;
 
   EXPECT_EQ(n.n_global_nodes, whole.n_nodes());
   EXPECT_EQ(n.n_global_pressures, whole.n_pressure_dofs());
@@ -149,7 +170,7 @@ TEST_P(NumberedInParts, AsTheWholeSpaceNumbersThem) {
   // Ownership and PETSc's numbering as the whole mesh's layout gives them; the unknowns the
   // part holds but does not own get theirs from their owners.
   const fem::PartOwnership o = fem::own_part_unknowns(PETSC_COMM_WORLD, part, space, n);
-  const fem::DofLayout layout(PETSC_COMM_WORLD, whole, partition, {});
+  const fem::DofLayout layout(PETSC_COMM_WORLD, whole, s.partition, {});
   EXPECT_EQ(o.n_owned, layout.n_owned());
   EXPECT_EQ(o.first_owned, layout.first_owned());
   int wrong_owner = 0, wrong_index = 0, not_owned = 0;
@@ -161,6 +182,39 @@ TEST_P(NumberedInParts, AsTheWholeSpaceNumbersThem) {
   EXPECT_EQ(wrong_owner, 0) << "of " << o.app.size() << " unknowns";
   EXPECT_EQ(wrong_index, 0) << "of " << o.app.size() << " unknowns";
   EXPECT_GT(not_owned, 0);
+}
+
+// A part carries what the assembly needs: the internal forces of its cells on its own space
+// (curved edges and pressures included), from the whole state's values at its unknowns, are
+// the whole residual's values at every unknown it owns (to round-off: the cells are summed
+// in another order).
+TEST_P(NumberedInParts, AssembleTheWholeResidualAtTheirOwnedUnknowns) {
+  const SceneInParts s(GetParam());
+  const fem::FieldSpace& whole = *s.scene->space;
+  const auto& materials = s.scene->problem.cell_material;
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> amplitude(-0.05, 0.05);
+  std::vector<double> u_whole(static_cast<size_t>(whole.n_dofs()));
+  for (double& x : u_whole) x = amplitude(gen);
+  std::vector<double> r_whole(u_whole.size(), 0.0);
+  EXPECT_EQ(fem::assemble_internal(whole, materials, u_whole, r_whole, nullptr).inverted_cell, -1);
+
+  const fem::PartOwnership o = fem::own_part_unknowns(PETSC_COMM_WORLD, s.part, *s.space, s.numbering);
+  std::vector<const materials::Material*> part_materials;
+  for (int id : s.part.cell_ids) part_materials.push_back(materials[id]);
+  std::vector<double> u(o.app.size()), r(o.app.size(), 0.0);
+  for (size_t i = 0; i < u.size(); ++i) u[i] = u_whole[o.app[i]];
+  EXPECT_EQ(fem::assemble_internal(*s.space, part_materials, u, r, nullptr).inverted_cell, -1);
+
+  double scale = 0;
+  for (double x : r_whole) scale = std::max(scale, std::abs(x));
+  int owned = 0;
+  double worst = 0;
+  for (size_t i = 0; i < r.size(); ++i)
+    if (o.owned[i]) worst = std::max(worst, std::abs(r[i] - r_whole[o.app[i]])), ++owned;
+  EXPECT_LT(worst, 1e-12 * scale);
+  EXPECT_EQ(owned, o.n_owned);
+  EXPECT_GT(scale, 0);
 }
 
 const char* const kNumberedScenes[] = {"mooney-rivlin-block", "block-strips-mr", "hertz-spheres-3d"};
