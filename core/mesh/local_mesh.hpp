@@ -8,9 +8,9 @@
 // refine_parts() refines the parts where they are, each process its own cells: children,
 // facets and new vertices get the ids mesh::refine() gives them on the whole mesh, so a mesh
 // refined in parts is the refined whole mesh divided (bit for bit, coordinates and curved
-// edges included), and the numbering of a level does not depend on the process count, so a
-// mesh need only be whole at the coarse level that is partitioned. (The solver does not build
-// on parts yet: its spaces and contact surfaces are those of the whole mesh, with the cells
+// edges included). A level's numbering thus does not depend on the process count, and a mesh
+// need only be whole at the coarse level that is partitioned. (The solver does not build on
+// parts yet: its spaces and contact surfaces are those of the whole mesh, with the cells
 // split by fem::MeshPartition.)
 #include <vector>
 
