@@ -1,6 +1,7 @@
 #pragma once
 // Values of the Newton system's unknowns addressed by their app index (dof_layout.hpp's
 // order: displacement node by node, then pressures, then multipliers), whatever holds them.
+// (Over a mesh part the index is the part space's own dof, fem::DofLayout's local index.)
 //
 // Assembly, contact and the constraints read the state u and add into residuals through
 // this view rather than through a std::vector indexed by app unknown, so that the storage

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <numeric>
 
+#include "common/error.hpp"
+
 namespace stiction::fem {
 
 DofLayout::DofLayout(MPI_Comm comm, const FieldSpace& space, const MeshPartition& partition,
                      const std::vector<int>& extra_vertices)
-    : comm_(comm), rank_(partition.rank), size_(partition.size), partition_(&partition) {
+    : comm_(comm), rank_(partition.rank), size_(partition.size), owned_cells_(partition.owned_cells) {
   const int d = space.dim(), nn = space.n_nodes(), n_space = space.n_dofs();
   n_total_ = n_space + static_cast<PetscInt>(extra_vertices.size());
   const int nc = space.mesh().n_cells();
@@ -42,8 +44,50 @@ DofLayout::DofLayout(MPI_Comm comm, const FieldSpace& space, const MeshPartition
   global_.resize(n_total_);
   for (PetscInt a = 0; a < n_total_; ++a) {
     global_[a] = next[owner_[a]]++;
-    if (owner_[a] == rank_) owned_app_.push_back(a);
+    if (owner_[a] == rank_) owned_local_.push_back(a);
   }
+}
+
+DofLayout::DofLayout(MPI_Comm comm, const mesh::LocalMesh& part, const FieldSpace& space, const PartOwnership& ownership)
+    : comm_(comm), first_owned_(ownership.first_owned), owner_(ownership.owner), global_(ownership.petsc),
+      app_(ownership.app) {
+  MPI_Comm_rank(comm, &rank_);
+  MPI_Comm_size(comm, &size_);
+  const PetscInt n_owned = ownership.n_owned;
+  MPI_Allreduce(&n_owned, &n_total_, 1, MPIU_INT, MPI_SUM, comm);
+  owned_cells_.resize(static_cast<size_t>(part.n_own_cells));
+  std::iota(owned_cells_.begin(), owned_cells_.end(), 0);
+  std::vector<int> nodes(space.nodes_per_cell());
+  for (int c = 0; c < space.mesh().n_cells(); ++c) {
+    space.cell_nodes(c, nodes.data());
+    if (std::any_of(nodes.begin(), nodes.end(), [&](int n) { return owner_[static_cast<size_t>(n) * space.dim()] == rank_; }))
+      row_cells_.push_back(c);
+  }
+  if (identity()) {
+    // One process's part is the whole mesh in the whole mesh's numbering.
+    for (size_t i = 0; i < app_.size(); ++i)
+      if (app_[i] != static_cast<PetscInt>(i) || global_[i] != app_[i])
+        throw Error("dof layout: a one-process part is not numbered as the whole mesh", ErrorKind::Internal);
+    return;
+  }
+  for (size_t i = 0; i < owner_.size(); ++i)
+    if (owner_[i] == rank_) owned_local_.push_back(static_cast<PetscInt>(i));
+  std::sort(owned_local_.begin(), owned_local_.end(), [&](PetscInt a, PetscInt b) { return global_[a] < global_[b]; });
+  if (static_cast<PetscInt>(owned_local_.size()) != n_owned ||
+      (n_owned > 0 && (global_[owned_local_.front()] != first_owned_ || global_[owned_local_.back()] != first_owned_ + n_owned - 1)))
+    throw Error("dof layout: a part's owned unknowns are not its PETSc range", ErrorKind::Internal);
+  std::vector<PetscInt> owned_app(owned_local_.size()), owned_petsc(owned_local_.size());
+  for (size_t j = 0; j < owned_local_.size(); ++j) owned_app[j] = app_[owned_local_[j]], owned_petsc[j] = first_owned_ + static_cast<PetscInt>(j);
+  STICTION_PETSC(AOCreateMemoryScalable(comm, n_owned, owned_app.data(), owned_petsc.data(), app_order_.out()));
+}
+
+void DofLayout::petsc_of_apps(std::vector<PetscInt>& apps) const {
+  if (identity()) return;
+  if (over_part()) {
+    STICTION_PETSC(AOApplicationToPetsc(app_order_, static_cast<PetscInt>(apps.size()), apps.data()));
+    return;
+  }
+  for (PetscInt& a : apps) a = global_[a];
 }
 
 Vec DofLayout::create_vector() const {
@@ -56,8 +100,8 @@ void DofLayout::scatter(const std::vector<double>& values, Vec v) const {
   PetscScalar* a;
   STICTION_PETSC(VecGetArray(v, &a));
   if (identity()) std::copy(values.begin(), values.begin() + std::min<size_t>(values.size(), n_total_), a);
-  for (size_t j = 0; j < owned_app_.size(); ++j)
-    if (static_cast<size_t>(owned_app_[j]) < values.size()) a[j] = values[owned_app_[j]];
+  for (size_t j = 0; j < owned_local_.size(); ++j)
+    if (const auto k = static_cast<size_t>(app(owned_local_[j])); k < values.size()) a[j] = values[k];
   STICTION_PETSC(VecRestoreArray(v, &a));
 }
 
@@ -72,10 +116,13 @@ void DofLayout::scatter_from_root(const std::vector<double>& values, Vec v) cons
   // v's present entries first, so that those the values do not reach keep theirs.
   STICTION_PETSC(VecScatterBegin(to_zero, v, whole, INSERT_VALUES, SCATTER_FORWARD));
   STICTION_PETSC(VecScatterEnd(to_zero, v, whole, INSERT_VALUES, SCATTER_FORWARD));
+  std::vector<PetscInt> index(rank_ == 0 ? std::min<size_t>(values.size(), n_total_) : 0);
+  std::iota(index.begin(), index.end(), 0);
+  petsc_of_apps(index);
   if (rank_ == 0) {
     PetscScalar* a;
     STICTION_PETSC(VecGetArray(whole, &a));
-    for (size_t k = 0; k < std::min<size_t>(values.size(), n_total_); ++k) a[global_[k]] = values[k];
+    for (size_t k = 0; k < index.size(); ++k) a[index[k]] = values[k];
     STICTION_PETSC(VecRestoreArray(whole, &a));
   }
   STICTION_PETSC(VecScatterBegin(to_zero, whole, v, INSERT_VALUES, SCATTER_REVERSE));
@@ -104,10 +151,13 @@ void DofLayout::gather_with(Vec v, std::vector<double>& values, bool root_only) 
   STICTION_PETSC(VecScatterBegin(scatter, v, whole, INSERT_VALUES, SCATTER_FORWARD));
   STICTION_PETSC(VecScatterEnd(scatter, v, whole, INSERT_VALUES, SCATTER_FORWARD));
   values.clear();
+  std::vector<PetscInt> index(root_only && rank_ != 0 ? 0 : n_total_);
+  std::iota(index.begin(), index.end(), 0);
+  petsc_of_apps(index);
   if (root_only && rank_ != 0) return;
   values.resize(n_total_);
   STICTION_PETSC(VecGetArrayRead(whole, &a));
-  for (PetscInt k = 0; k < n_total_; ++k) values[k] = a[global_[k]];
+  for (PetscInt k = 0; k < n_total_; ++k) values[k] = a[index[k]];
   STICTION_PETSC(VecRestoreArrayRead(whole, &a));
 }
 
@@ -118,8 +168,8 @@ std::vector<PetscInt> DofLayout::owned_indices(PetscInt first, PetscInt last) co
     std::iota(out.begin(), out.end(), first);
     return out;
   }
-  for (PetscInt a : owned_app_)
-    if (a >= first && a < last) out.push_back(global(a));
+  for (PetscInt l : owned_local_)
+    if (const PetscInt a = app(l); a >= first && a < last) out.push_back(global(l));
   return out;
 }
 
@@ -129,7 +179,10 @@ std::vector<PetscInt> DofLayout::block_numbering(PetscInt first, PetscInt last) 
   if (identity()) return order;
   // PETSc numbers rank by rank: in ascending PETSc index the block's unknowns come process
   // by process, each process's in the order of owned_indices.
-  std::sort(order.begin(), order.end(), [&](PetscInt a, PetscInt b) { return global(first + a) < global(first + b); });
+  std::vector<PetscInt> index(order.size());
+  std::iota(index.begin(), index.end(), first);
+  petsc_of_apps(index);
+  std::sort(order.begin(), order.end(), [&](PetscInt a, PetscInt b) { return index[a] < index[b]; });
   std::vector<PetscInt> number(order.size());
   for (size_t i = 0; i < order.size(); ++i) number[static_cast<size_t>(order[i])] = static_cast<PetscInt>(i);
   return number;

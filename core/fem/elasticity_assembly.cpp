@@ -323,7 +323,7 @@ Mat assemble_pressure_mass(const DofLayout& layout, const FieldSpace& space) {
   const PetscInt n_owned = static_cast<PetscInt>(layout.owned_indices(first, first + n).size());
   Mat M;
   STICTION_PETSC(MatCreateAIJ(layout.comm(), n_owned, n_owned, n, n, 32, nullptr, 32, nullptr, &M));
-  for (int c : layout.partition().owned_cells) {  // every cell on one rank
+  for (int c : layout.owned_cells()) {  // every cell on one rank
     const int* v = space.mesh().cell(c);
     if (space.pressure_dof(v[0]) < 0) continue;
     // The chord cell's volume: the matrix is a preconditioner's Schur approximation.

@@ -6,19 +6,19 @@ namespace stiction::fem {
 
 GhostPattern::GhostPattern(const DofLayout& layout, const std::vector<PetscInt>& needed) : layout_(&layout) {
   if (layout.identity()) return;
-  for (PetscInt a : needed)
-    if (!layout.owns(a)) ghost_app_.push_back(a);
-  std::sort(ghost_app_.begin(), ghost_app_.end());
-  ghost_app_.erase(std::unique(ghost_app_.begin(), ghost_app_.end()), ghost_app_.end());
-  storage_of_app_.assign(static_cast<size_t>(layout.n_total()), -1);
+  for (PetscInt l : needed)
+    if (!layout.owns(l)) ghost_local_.push_back(l);
+  std::sort(ghost_local_.begin(), ghost_local_.end());
+  ghost_local_.erase(std::unique(ghost_local_.begin(), ghost_local_.end()), ghost_local_.end());
+  storage_of_local_.assign(static_cast<size_t>(layout.n_held()), -1);
   // The owned entries in PETSc's order: storage j is global index first_owned() + j.
-  for (PetscInt a = 0; a < layout.n_total(); ++a)
-    if (layout.owns(a)) storage_of_app_[a] = static_cast<int>(layout.global(a) - layout.first_owned());
+  for (PetscInt l = 0; l < layout.n_held(); ++l)
+    if (layout.owns(l)) storage_of_local_[l] = static_cast<int>(layout.global(l) - layout.first_owned());
   const PetscInt n_owned = layout.n_owned();
-  ghost_global_.reserve(ghost_app_.size());
-  for (size_t g = 0; g < ghost_app_.size(); ++g) {
-    storage_of_app_[ghost_app_[g]] = static_cast<int>(n_owned + static_cast<PetscInt>(g));
-    ghost_global_.push_back(layout.global(ghost_app_[g]));
+  ghost_global_.reserve(ghost_local_.size());
+  for (size_t g = 0; g < ghost_local_.size(); ++g) {
+    storage_of_local_[ghost_local_[g]] = static_cast<int>(n_owned + static_cast<PetscInt>(g));
+    ghost_global_.push_back(layout.global(ghost_local_[g]));
   }
 }
 
@@ -53,13 +53,13 @@ Vec GhostedVector::vec() const {
 }
 
 StateView GhostedVector::view() const {
-  const auto& map = pattern_->storage_of_app();
+  const auto& map = pattern_->storage_of_local();
   if (map.empty()) return storage_;
   return {storage_.data(), storage_.size(), map.data(), map.size()};
 }
 
 ResidualView GhostedVector::view() {
-  const auto& map = pattern_->storage_of_app();
+  const auto& map = pattern_->storage_of_local();
   if (map.empty()) return storage_;
   return {storage_.data(), storage_.size(), map.data(), map.size()};
 }
@@ -77,13 +77,15 @@ void GhostedVector::add_ghosts_to_owners() {
 }
 
 void GhostedVector::assign_whole(const std::vector<double>& whole) {
-  const auto& map = pattern_->storage_of_app();
+  const auto& map = pattern_->storage_of_local();
   if (map.empty()) {
     std::copy(whole.begin(), whole.begin() + std::min(whole.size(), storage_.size()), storage_.begin());
     return;
   }
-  for (size_t a = 0; a < std::min(whole.size(), map.size()); ++a)
-    if (map[a] >= 0) storage_[static_cast<size_t>(map[a])] = whole[a];
+  const DofLayout& layout = pattern_->layout();
+  for (size_t l = 0; l < map.size(); ++l)
+    if (const auto a = static_cast<size_t>(layout.app(static_cast<PetscInt>(l))); map[l] >= 0 && a < whole.size())
+      storage_[static_cast<size_t>(map[l])] = whole[a];
 }
 
 void GhostedVector::assign_from_root(const std::vector<double>& whole) {

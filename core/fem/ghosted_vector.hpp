@@ -5,8 +5,9 @@
 // (VecCreateGhostWithArray): storage = owned entries in PETSc's order, then the ghosts;
 // VecGhostUpdate copies owners' values to the ghosts (forward) or adds the ghosts' values
 // into their owners (reverse). The assembly and the contact code address the storage by
-// app index through fem::AppView, with the pattern's map. On one process the storage is
-// the whole vector in app order and the view needs no map.
+// the layout's local index (the app index over the whole mesh, the part's dof over a mesh
+// part) through fem::AppView, with the pattern's map. On one process the storage is the
+// whole vector in app order and the view needs no map.
 #include <memory>
 #include <vector>
 
@@ -19,23 +20,23 @@ namespace stiction::fem {
 // Which unknowns a process holds, shared by every vector of that shape.
 class GhostPattern {
 public:
-  // The layout's owned unknowns, and as ghosts those of `needed` (app indices, in any
+  // The layout's owned unknowns, and as ghosts those of `needed` (local indices, in any
   // order, repeats and owned ones allowed) that another process owns.
   GhostPattern(const DofLayout& layout, const std::vector<PetscInt>& needed);
 
   const DofLayout& layout() const { return *layout_; }
   PetscInt n_owned() const { return layout_->n_owned(); }
-  PetscInt n_ghosts() const { return static_cast<PetscInt>(ghost_app_.size()); }
+  PetscInt n_ghosts() const { return static_cast<PetscInt>(ghost_local_.size()); }
   PetscInt n_stored() const { return n_owned() + n_ghosts(); }
-  // Storage index of every app unknown, -1 where not held (empty on one process: the
+  // Storage index of every local unknown, -1 where not stored (empty on one process: the
   // storage index is the app index).
-  const std::vector<int>& storage_of_app() const { return storage_of_app_; }
-  bool holds(PetscInt app) const { return storage_of_app_.empty() || storage_of_app_[app] >= 0; }
+  const std::vector<int>& storage_of_local() const { return storage_of_local_; }
+  bool holds(PetscInt local) const { return storage_of_local_.empty() || storage_of_local_[local] >= 0; }
 
 private:
   const DofLayout* layout_;
-  std::vector<int> storage_of_app_;
-  std::vector<PetscInt> ghost_app_;     // ascending: storage n_owned() + g holds ghost g
+  std::vector<int> storage_of_local_;
+  std::vector<PetscInt> ghost_local_;   // ascending: storage n_owned() + g holds ghost g
   std::vector<PetscInt> ghost_global_;
   friend class GhostedVector;
 };
@@ -57,7 +58,7 @@ public:
   void update_ghosts();
   // Each owner adds its ghosts' values (the ghosts keep theirs).
   void add_ghosts_to_owners();
-  // Every held entry from an app-ordered whole vector (the same on every process).
+  // Every stored entry from an app-ordered whole vector (the same on every process).
   void assign_whole(const std::vector<double>& whole);
   // The same from a whole vector that process 0 alone need hold (collective; a shorter
   // one leaves the rest as it is).

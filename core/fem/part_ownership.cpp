@@ -40,23 +40,23 @@ PartOwnership own_part_unknowns(MPI_Comm comm, const mesh::LocalMesh& part, cons
   const std::vector<int> owner = node_owners(part, space);
   PartOwnership o;
   o.app.resize(space.n_dofs());
-  o.owned.assign(space.n_dofs(), 0);
+  o.owner.assign(space.n_dofs(), -1);
   for (int node = 0; node < space.n_nodes(); ++node)
     for (int k = 0; k < d; ++k) {
       o.app[static_cast<size_t>(node) * d + k] = static_cast<PetscInt>(numbering.node[node]) * d + k;
-      o.owned[static_cast<size_t>(node) * d + k] = owner[node] == rank;
+      o.owner[static_cast<size_t>(node) * d + k] = owner[node];
     }
   const PetscInt pressure_block = static_cast<PetscInt>(numbering.n_global_nodes) * d;
   for (int v = 0; v < space.n_vertices(); ++v)
     if (space.pressure_dof(v) >= 0) {
       o.app[space.pressure_dof(v)] = pressure_block + numbering.pressure[v];
-      o.owned[space.pressure_dof(v)] = owner[v] == rank;
+      o.owner[space.pressure_dof(v)] = owner[v];
     }
 
   // The owned unknowns in app order take this process's range of PETSc indices.
   std::vector<PetscInt> owned_app;
   for (size_t i = 0; i < o.app.size(); ++i)
-    if (o.owned[i]) owned_app.push_back(o.app[i]);
+    if (o.owner[i] == rank) owned_app.push_back(o.app[i]);
   std::sort(owned_app.begin(), owned_app.end());
   o.n_owned = static_cast<PetscInt>(owned_app.size());
   MPI_Exscan(&o.n_owned, &o.first_owned, 1, MPIU_INT, MPI_SUM, comm);

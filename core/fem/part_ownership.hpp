@@ -16,9 +16,10 @@ namespace stiction::fem {
 
 struct PartOwnership {
   // Per dof of the part's space (its local dof order: node * dim + component, then the
-  // pressures): the whole-space (app) index, PETSc's index, and whether this process owns it.
+  // pressures): the whole-space (app) index, PETSc's index, and the owning process (-1 for
+  // the nodes of ghost cells only, whose owner the part cannot tell: another process's).
   std::vector<PetscInt> app, petsc;
-  std::vector<char> owned;
+  std::vector<int> owner;
   PetscInt n_owned = 0, first_owned = 0;
 };
 

@@ -89,7 +89,7 @@ double DirichletLifting::free_norm(const fem::DofLayout& layout, fem::StateView 
     return std::sqrt(s);
   }
   for (PetscInt j = 0; j < layout.n_owned(); ++j) {
-    const auto a = static_cast<size_t>(layout.app_of_owned(j));
+    const auto a = static_cast<size_t>(layout.local_of_owned(j));
     if (a < n && !is_constrained_[a]) s += r[a] * r[a];
   }
   return std::sqrt(fem::sum_over_ranks(layout.comm(), s));
@@ -102,7 +102,7 @@ double DirichletLifting::free_norm(const fem::DofLayout& layout, Vec v) const {
   STICTION_PETSC(VecGetLocalSize(v, &n_local));
   double s = 0;
   for (PetscInt j = 0; j < n_local; ++j) {
-    const auto app = static_cast<size_t>(layout.app_of_owned(j));
+    const auto app = static_cast<size_t>(layout.local_of_owned(j));
     if (app < is_constrained_.size() && !is_constrained_[app]) s += a[j] * a[j];
   }
   STICTION_PETSC(VecRestoreArrayRead(v, &a));

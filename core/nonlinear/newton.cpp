@@ -165,7 +165,7 @@ fem::InternalForceStatus QuasiStaticSolver::evaluate(double t, fem::StateView u,
   const fem::StateView share = std::as_const(*contact_share_).view();
   fem::ResidualView ru = r.u.view();
   for (PetscInt j = 0; j < layout_.n_owned(); ++j) {
-    const PetscInt a = layout_.app_of_owned(j);
+    const PetscInt a = layout_.local_of_owned(j);
     if (a < problem_.space->n_dofs()) ru[a] += share[a];
   }
   return status;
@@ -213,7 +213,7 @@ void QuasiStaticSolver::split_update(Vec du, fem::GhostedVector& dv, std::vector
   std::fill(dl.begin(), dl.end(), 0.0);
   const fem::StateView v = std::as_const(dv).view();
   for (PetscInt j = 0; j < layout_.n_owned(); ++j)
-    if (const PetscInt a = layout_.app_of_owned(j); a >= n_u) dl[a - n_u] = v[a];
+    if (const PetscInt a = layout_.local_of_owned(j); a >= n_u) dl[a - n_u] = v[a];
   if (!layout_.identity()) fem::sum_over_ranks(layout_.comm(), dl);
 }
 

@@ -122,7 +122,7 @@ void NewtonSystemBuilder::assemble(double t, fem::StateView u, const std::vector
   PetscScalar* b;
   STICTION_PETSC(VecGetArray(system_.rhs, &b));
   for (PetscInt j = 0; j < layout_.n_owned(); ++j) {
-    const PetscInt a = layout_.app_of_owned(j);
+    const PetscInt a = layout_.local_of_owned(j);
     b[j] = a < n_u ? -r_u[a] : -r_c[a - n_u];
   }
   STICTION_PETSC(VecRestoreArray(system_.rhs, &b));

@@ -2,7 +2,8 @@
 // processes and refined in parts (mesh::refine_parts) is the refined whole mesh divided the
 // same way: the same global ids, coordinates bit for bit, tagged facets and curved edges, on
 // curved 2D and 3D scenes and on the block with strips (self-contact facets in its grooves);
-// and a part's edges, nodes and pressure dofs get the whole mesh's numbers.
+// a part's edges, nodes and pressure dofs get the whole mesh's numbers; and a layout over
+// the part assembles the whole mesh's residual and tangent.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,11 +16,13 @@
 
 #include "builtin_scenes.hpp"
 #include "fem/field_space.hpp"
+#include "fem/ghosted_vector.hpp"
 #include "fem/mesh_partition.hpp"
 #include "fem/dof_layout.hpp"
 #include "fem/elasticity_assembly.hpp"
 #include "fem/part_numbering.hpp"
 #include "fem/part_ownership.hpp"
+#include "fem/stiffness_matrix.hpp"
 #include "mesh/local_mesh.hpp"
 #include "scene/scene.hpp"
 #include "support/mesh_checks.hpp"
@@ -173,15 +176,33 @@ TEST_P(NumberedInParts, AsTheWholeSpaceNumbersThem) {
   const fem::DofLayout layout(PETSC_COMM_WORLD, whole, s.partition, {});
   EXPECT_EQ(o.n_owned, layout.n_owned());
   EXPECT_EQ(o.first_owned, layout.first_owned());
-  int wrong_owner = 0, wrong_index = 0, not_owned = 0;
+  int wrong_owner = 0, wrong_index = 0, not_owned = 0, unknown_owner = 0;
   for (size_t i = 0; i < o.app.size(); ++i) {
-    wrong_owner += static_cast<bool>(o.owned[i]) != layout.owns(o.app[i]);
+    wrong_owner += o.owner[i] >= 0 && o.owner[i] != layout.owner(o.app[i]);
+    unknown_owner += o.owner[i] < 0 && layout.owns(o.app[i]);  // only another's can be unknown
     wrong_index += o.petsc[i] != layout.global(o.app[i]);
-    not_owned += !o.owned[i];
+    not_owned += o.owner[i] != s.partition.rank;
   }
   EXPECT_EQ(wrong_owner, 0) << "of " << o.app.size() << " unknowns";
+  EXPECT_EQ(unknown_owner, 0) << "of " << o.app.size() << " unknowns";
   EXPECT_EQ(wrong_index, 0) << "of " << o.app.size() << " unknowns";
   EXPECT_GT(not_owned, 0);
+}
+
+// A state of small random displacements (and pressures) of the whole space, the same on
+// every process.
+std::vector<double> random_whole_state(const fem::FieldSpace& whole) {
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> amplitude(-0.05, 0.05);
+  std::vector<double> u(static_cast<size_t>(whole.n_dofs()));
+  for (double& x : u) x = amplitude(gen);
+  return u;
+}
+
+std::vector<const materials::Material*> part_materials(const SceneInParts& s) {
+  std::vector<const materials::Material*> out;
+  for (int id : s.part.cell_ids) out.push_back(s.scene->problem.cell_material[id]);
+  return out;
 }
 
 // A part carries what the assembly needs: the internal forces of its cells on its own space
@@ -191,29 +212,145 @@ TEST_P(NumberedInParts, AsTheWholeSpaceNumbersThem) {
 TEST_P(NumberedInParts, AssembleTheWholeResidualAtTheirOwnedUnknowns) {
   const SceneInParts s(GetParam());
   const fem::FieldSpace& whole = *s.scene->space;
-  const auto& materials = s.scene->problem.cell_material;
-  std::mt19937 gen(5);
-  std::uniform_real_distribution<double> amplitude(-0.05, 0.05);
-  std::vector<double> u_whole(static_cast<size_t>(whole.n_dofs()));
-  for (double& x : u_whole) x = amplitude(gen);
+  const std::vector<double> u_whole = random_whole_state(whole);
   std::vector<double> r_whole(u_whole.size(), 0.0);
-  EXPECT_EQ(fem::assemble_internal(whole, materials, u_whole, r_whole, nullptr).inverted_cell, -1);
+  EXPECT_EQ(fem::assemble_internal(whole, s.scene->problem.cell_material, u_whole, r_whole, nullptr).inverted_cell, -1);
 
   const fem::PartOwnership o = fem::own_part_unknowns(PETSC_COMM_WORLD, s.part, *s.space, s.numbering);
-  std::vector<const materials::Material*> part_materials;
-  for (int id : s.part.cell_ids) part_materials.push_back(materials[id]);
   std::vector<double> u(o.app.size()), r(o.app.size(), 0.0);
   for (size_t i = 0; i < u.size(); ++i) u[i] = u_whole[o.app[i]];
-  EXPECT_EQ(fem::assemble_internal(*s.space, part_materials, u, r, nullptr).inverted_cell, -1);
+  EXPECT_EQ(fem::assemble_internal(*s.space, part_materials(s), u, r, nullptr).inverted_cell, -1);
 
   double scale = 0;
   for (double x : r_whole) scale = std::max(scale, std::abs(x));
   int owned = 0;
   double worst = 0;
   for (size_t i = 0; i < r.size(); ++i)
-    if (o.owned[i]) worst = std::max(worst, std::abs(r[i] - r_whole[o.app[i]])), ++owned;
+    if (o.owner[i] == s.partition.rank) worst = std::max(worst, std::abs(r[i] - r_whole[o.app[i]])), ++owned;
   EXPECT_LT(worst, 1e-12 * scale);
   EXPECT_EQ(owned, o.n_owned);
+  EXPECT_GT(scale, 0);
+}
+
+// The tangent assembled on the parts, each process its owned rows from its part's cells
+// through a layout over the part, is the one the whole mesh's distributed assembly gives:
+// the same PETSc numbering, the same nonzero pattern, values to round-off.
+TEST_P(NumberedInParts, AssembleTheWholeTangent) {
+  const SceneInParts s(GetParam());
+  const fem::FieldSpace& whole = *s.scene->space;
+  const std::vector<double> u_whole = random_whole_state(whole);
+  const fem::DofLayout whole_layout(PETSC_COMM_WORLD, whole, s.partition, {});
+  fem::StiffnessMatrix whole_tangent(whole_layout, whole);
+  whole_tangent.begin_assembly();
+  std::vector<double> no_residual;
+  const auto whole_status = fem::assemble_internal(whole, s.scene->problem.cell_material, u_whole, no_residual,
+                                                   &whole_tangent, &whole_layout.row_cells());
+  whole_tangent.end_assembly();
+
+  const fem::PartOwnership o = fem::own_part_unknowns(PETSC_COMM_WORLD, s.part, *s.space, s.numbering);
+  const fem::DofLayout layout(PETSC_COMM_WORLD, s.part, *s.space, o);
+  EXPECT_TRUE(layout.over_part());
+  std::vector<double> u(o.app.size());
+  for (size_t i = 0; i < u.size(); ++i) u[i] = u_whole[o.app[i]];
+  fem::StiffnessMatrix tangent(layout, *s.space);
+  tangent.begin_assembly();
+  const auto status = fem::assemble_internal(*s.space, part_materials(s), u, no_residual, &tangent, &layout.row_cells());
+  tangent.end_assembly();
+  EXPECT_EQ(whole_status.inverted_cell, -1);
+  EXPECT_EQ(status.inverted_cell, -1);
+
+  MatInfo whole_info, info;
+  MatGetInfo(whole_tangent.mat(), MAT_GLOBAL_SUM, &whole_info);
+  MatGetInfo(tangent.mat(), MAT_GLOBAL_SUM, &info);
+  EXPECT_EQ(info.nz_used, whole_info.nz_used);
+  PetscReal scale = 0, difference = 0;
+  MatNorm(whole_tangent.mat(), NORM_INFINITY, &scale);
+  MatAXPY(tangent.mat(), -1.0, whole_tangent.mat(), SAME_NONZERO_PATTERN);
+  MatNorm(tangent.mat(), NORM_INFINITY, &difference);
+  EXPECT_LT(difference, 1e-12 * scale);
+  EXPECT_GT(scale, 0);
+}
+
+// A layout over a part moves vectors and field blocks between PETSc's numbering and the app
+// order as the whole mesh's layout does, with the indices of unknowns the part does not
+// hold asked of their owners.
+TEST_P(NumberedInParts, LayOutVectorsAndFieldBlocksAsTheWholeMesh) {
+  const SceneInParts s(GetParam());
+  const fem::FieldSpace& whole = *s.scene->space;
+  const fem::DofLayout whole_layout(PETSC_COMM_WORLD, whole, s.partition, {});
+  const fem::PartOwnership o = fem::own_part_unknowns(PETSC_COMM_WORLD, s.part, *s.space, s.numbering);
+  const fem::DofLayout layout(PETSC_COMM_WORLD, s.part, *s.space, o);
+  EXPECT_EQ(layout.n_total(), whole_layout.n_total());
+  EXPECT_EQ(layout.n_owned(), whole_layout.n_owned());
+  EXPECT_EQ(layout.first_owned(), whole_layout.first_owned());
+  EXPECT_EQ(layout.owned_cells().size(), static_cast<size_t>(s.part.n_own_cells));
+  int wrong_owned = 0;
+  for (PetscInt j = 0; j < layout.n_owned(); ++j) wrong_owned += layout.app(layout.local_of_owned(j)) != whole_layout.local_of_owned(j);
+  EXPECT_EQ(wrong_owned, 0);
+
+  // Every field block: the displacement's vertex and edge blocks, the pressures where present.
+  std::vector<std::pair<int, int>> blocks = {whole.linear_block(), whole.quadratic_block()};
+  if (whole.has_pressure()) blocks.push_back(whole.pressure_block());
+  for (const auto& [first, last] : blocks) {
+    EXPECT_EQ(layout.owned_indices(first, last), whole_layout.owned_indices(first, last)) << first;
+    EXPECT_EQ(layout.block_numbering(first, last), whole_layout.block_numbering(first, last)) << first;
+  }
+
+  // Whole app-ordered values into a distributed vector and back, through each layout.
+  const std::vector<double> values = random_whole_state(whole);
+  PetscVec v(layout.create_vector()), v_whole(whole_layout.create_vector());
+  layout.scatter(values, v);
+  whole_layout.scatter(values, v_whole);
+  PetscBool same = PETSC_FALSE;
+  VecEqual(v, v_whole, &same);
+  EXPECT_TRUE(same);
+  std::vector<double> back, on_root;
+  layout.gather(v, back);
+  EXPECT_EQ(back, values);
+  VecZeroEntries(v);
+  layout.scatter_from_root(s.partition.rank == 0 ? values : std::vector<double>{}, v);
+  VecEqual(v, v_whole, &same);
+  EXPECT_TRUE(same);
+  layout.gather_on_root(v, on_root);
+  EXPECT_EQ(on_root, s.partition.rank == 0 ? values : std::vector<double>{});
+}
+
+// Over a part, the Newton state is held as the part's owned unknowns and ghosts, addressed
+// by the part's own dof numbers: ghosts take their owners' values, and the internal forces
+// assembled through the ghosted state over the part's row cells gather into the whole
+// residual.
+TEST_P(NumberedInParts, HoldTheStateAsGhostedVectors) {
+  const SceneInParts s(GetParam());
+  const fem::FieldSpace& whole = *s.scene->space;
+  const std::vector<double> u_whole = random_whole_state(whole);
+  std::vector<double> r_whole(u_whole.size(), 0.0);
+  EXPECT_EQ(fem::assemble_internal(whole, s.scene->problem.cell_material, u_whole, r_whole, nullptr).inverted_cell, -1);
+
+  const fem::PartOwnership o = fem::own_part_unknowns(PETSC_COMM_WORLD, s.part, *s.space, s.numbering);
+  const fem::DofLayout layout(PETSC_COMM_WORLD, s.part, *s.space, o);
+  auto pattern = std::make_shared<const fem::GhostPattern>(layout, fem::unknowns_of_cells(*s.space, layout.row_cells()));
+  EXPECT_GT(pattern->n_ghosts(), 0);
+  EXPECT_EQ(pattern->storage_of_local().size(), o.app.size());  // the part's size, not the whole system's
+
+  fem::GhostedVector u(pattern);
+  fem::ResidualView uv = u.view();
+  for (PetscInt l = 0; l < layout.n_held(); ++l)
+    if (layout.owns(l)) uv[l] = u_whole[layout.app(l)];
+  u.update_ghosts();
+  int wrong = 0, stored = 0;
+  for (PetscInt l = 0; l < layout.n_held(); ++l)
+    if (pattern->holds(l)) wrong += uv[l] != u_whole[layout.app(l)], ++stored;
+  EXPECT_EQ(wrong, 0) << "of " << stored;
+  EXPECT_EQ(stored, pattern->n_stored());
+
+  fem::GhostedVector r(pattern);
+  EXPECT_EQ(fem::assemble_internal(*s.space, part_materials(s), u.view(), r.view(), nullptr, &layout.row_cells()).inverted_cell, -1);
+  const std::vector<double> r_gathered = r.whole();
+  ASSERT_EQ(r_gathered.size(), r_whole.size());
+  double scale = 0, worst = 0;
+  for (size_t a = 0; a < r_whole.size(); ++a)
+    scale = std::max(scale, std::abs(r_whole[a])), worst = std::max(worst, std::abs(r_gathered[a] - r_whole[a]));
+  EXPECT_LT(worst, 1e-12 * scale);
   EXPECT_GT(scale, 0);
 }
 
