@@ -169,22 +169,41 @@ std::vector<PetscInt> DofLayout::owned_indices(PetscInt first, PetscInt last) co
     return out;
   }
   for (PetscInt l : owned_local_)
-    if (const PetscInt a = app(l); a >= first && a < last) out.push_back(global(l));
+    if (l >= first && l < last) out.push_back(global(l));
   return out;
 }
 
 std::vector<PetscInt> DofLayout::block_numbering(PetscInt first, PetscInt last) const {
-  std::vector<PetscInt> order(static_cast<size_t>(last - first));
-  std::iota(order.begin(), order.end(), 0);
-  if (identity()) return order;
-  // PETSc numbers rank by rank: in ascending PETSc index the block's unknowns come process
-  // by process, each process's in the order of owned_indices.
-  std::vector<PetscInt> index(order.size());
-  std::iota(index.begin(), index.end(), first);
-  petsc_of_apps(index);
-  std::sort(order.begin(), order.end(), [&](PetscInt a, PetscInt b) { return index[a] < index[b]; });
-  std::vector<PetscInt> number(order.size());
-  for (size_t i = 0; i < order.size(); ++i) number[static_cast<size_t>(order[i])] = static_cast<PetscInt>(i);
+  std::vector<PetscInt> number(static_cast<size_t>(last - first));
+  std::iota(number.begin(), number.end(), 0);
+  if (identity()) return number;
+  // PETSc numbers a field rank by rank, each rank's unknowns in PETSc's order
+  // (owned_indices): an owned unknown's number is the count on the ranks before plus its
+  // place among this rank's. The held unknowns that others own learn theirs from them.
+  const std::vector<PetscInt> owned = owned_indices(first, last);
+  const auto n_mine = static_cast<PetscInt>(owned.size());
+  PetscInt offset = 0;
+  MPI_Exscan(&n_mine, &offset, 1, MPIU_INT, MPI_SUM, comm_);
+  if (rank_ == 0) offset = 0;  // MPI_Exscan leaves rank 0's result undefined
+  PetscVec numbers(create_vector());
+  for (PetscInt j = 0; j < n_mine; ++j)
+    STICTION_PETSC(VecSetValue(numbers, owned[j], static_cast<PetscScalar>(offset + j), INSERT_VALUES));
+  STICTION_PETSC(VecAssemblyBegin(numbers));
+  STICTION_PETSC(VecAssemblyEnd(numbers));
+  std::vector<PetscInt> held(number.size());
+  for (size_t k = 0; k < held.size(); ++k) held[k] = global(first + static_cast<PetscInt>(k));
+  PetscOwner<IS, ISDestroy> from;
+  PetscOwner<VecScatter, VecScatterDestroy> scatter;
+  PetscVec mine;
+  STICTION_PETSC(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(held.size()), held.data(), PETSC_USE_POINTER, from.out()));
+  STICTION_PETSC(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(held.size()), mine.out()));
+  STICTION_PETSC(VecScatterCreate(numbers, from, mine, nullptr, scatter.out()));
+  STICTION_PETSC(VecScatterBegin(scatter, numbers, mine, INSERT_VALUES, SCATTER_FORWARD));
+  STICTION_PETSC(VecScatterEnd(scatter, numbers, mine, INSERT_VALUES, SCATTER_FORWARD));
+  const PetscScalar* a;
+  STICTION_PETSC(VecGetArrayRead(mine, &a));
+  for (size_t k = 0; k < number.size(); ++k) number[k] = static_cast<PetscInt>(a[k]);
+  STICTION_PETSC(VecRestoreArrayRead(mine, &a));
   return number;
 }
 

@@ -78,12 +78,13 @@ public:
   // Every entry of v in app order on rank 0; values is left empty on the other ranks (what
   // one writer needs, without a whole-size copy on every process).
   void gather_on_root(Vec v, std::vector<double>& values) const;
-  // The owned PETSc indices of app unknowns [first, last), ascending.
+  // The owned PETSc indices of local unknowns [first, last), ascending. The space's field
+  // blocks are local ranges (FieldSpace::linear_block() etc.): over a part, the part's
+  // vertex, edge and pressure dofs are the whole space's of the same blocks.
   std::vector<PetscInt> owned_indices(PetscInt first, PetscInt last) const;
-  // The numbering of the block of app unknowns [first, last) that PETSc gives it as a field
-  // (MatCreateSubMatrix, VecGetSubVector over owned_indices): process by process, in PETSc's
-  // order within each. Entry k is unknown first + k's index in it; on one rank, k.
-  // Collective.
+  // The numbering of a field block that PETSc gives it as a field (MatCreateSubMatrix,
+  // VecGetSubVector over owned_indices): process by process, in PETSc's order within each.
+  // Entry k is local unknown first + k's index in it; on one rank, k. Collective.
   std::vector<PetscInt> block_numbering(PetscInt first, PetscInt last) const;
 
 private:

@@ -322,7 +322,8 @@ Mat assemble_pressure_mass(const DofLayout& layout, const FieldSpace& space) {
   const std::vector<PetscInt> row = layout.block_numbering(first, first + n);
   const PetscInt n_owned = static_cast<PetscInt>(layout.owned_indices(first, first + n).size());
   Mat M;
-  STICTION_PETSC(MatCreateAIJ(layout.comm(), n_owned, n_owned, n, n, 32, nullptr, 32, nullptr, &M));
+  // The block's size is the sum of the owned counts (a part's space holds fewer pressures).
+  STICTION_PETSC(MatCreateAIJ(layout.comm(), n_owned, n_owned, PETSC_DETERMINE, PETSC_DETERMINE, 32, nullptr, 32, nullptr, &M));
   for (int c : layout.owned_cells()) {  // every cell on one rank
     const int* v = space.mesh().cell(c);
     if (space.pressure_dof(v[0]) < 0) continue;

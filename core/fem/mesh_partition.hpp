@@ -1,9 +1,10 @@
 #pragma once
-// Which MPI rank owns each cell. The mesh itself stays whole on every rank (the surfaces
-// the contact search reads are small next to the volume); what is divided is the Newton
-// system's rows and the state: each rank owns the dofs of the nodes its cells reach first
-// (fem::DofLayout), holds those and the ghosts it reads (fem::GhostedVector), and assembles
-// its rows of the residual and the tangent from the cells that reach them.
+// Which MPI rank owns each cell. On this path the mesh itself stays whole on every rank
+// (scene::divide_scene gives each rank its part instead, for scenes without contact so
+// far); what is divided is the Newton system's rows and the state: each rank owns the dofs
+// of the nodes its cells reach first (fem::DofLayout), holds those and the ghosts it reads
+// (fem::GhostedVector), and assembles its rows of the residual and the tangent from the
+// cells that reach them.
 //
 // The cells are split by PETSc's MatPartitioning over the dual graph (cells sharing a
 // facet), with PT-Scotch, the graph partitioner Debian's PETSc carries (it has no ParMETIS,

@@ -9,25 +9,30 @@
 
 namespace stiction::nonlinear {
 
-DirichletLifting::DirichletLifting(const ElasticityProblem& problem) : problem_(problem) {
+DirichletLifting::DirichletLifting(MPI_Comm comm, const ElasticityProblem& problem) : problem_(problem) {
   const fem::FieldSpace& space = *problem.space;
   const int d = space.dim();
   is_constrained_.assign(space.n_dofs(), 0);
   std::vector<int> nodes(space.nodes_per_facet());
+  std::vector<int> n_facets;  // per condition: a mesh part may hold none of a boundary's facets
   for (const auto& bc : problem.dirichlet) {
     std::vector<int> bc_nodes;
+    n_facets.push_back(0);
     for (int f = 0; f < space.mesh().n_facets(); ++f) {
       if (space.mesh().facet_tags[f] != bc.facet_tag) continue;
       space.facet_nodes(f, nodes.data());
       bc_nodes.insert(bc_nodes.end(), nodes.begin(), nodes.end());
+      ++n_facets.back();
     }
     std::sort(bc_nodes.begin(), bc_nodes.end());
     bc_nodes.erase(std::unique(bc_nodes.begin(), bc_nodes.end()), bc_nodes.end());
-    if (bc_nodes.empty()) throw Error(fmt::format("Dirichlet condition '{}': its boundary has no facets", bc.name));
     for (int n : bc_nodes)
       for (int c : bc.components) is_constrained_[static_cast<size_t>(n) * d + c] = 1;
     bc_nodes_.push_back(std::move(bc_nodes));
   }
+  MPI_Allreduce(MPI_IN_PLACE, n_facets.data(), static_cast<int>(n_facets.size()), MPI_INT, MPI_SUM, comm);
+  for (size_t b = 0; b < n_facets.size(); ++b)
+    if (n_facets[b] == 0) throw Error(fmt::format("Dirichlet condition '{}': its boundary has no facets", problem.dirichlet[b].name));
   for (int i = 0; i < space.n_dofs(); ++i)
     if (is_constrained_[i]) constrained_.push_back(i);
 }

@@ -22,7 +22,8 @@ namespace stiction::nonlinear {
 
 class DirichletLifting {
 public:
-  explicit DirichletLifting(const ElasticityProblem& problem);  // throws when a boundary has no facets
+  // Collective; throws when a condition's boundary has no facets on any process.
+  DirichletLifting(MPI_Comm comm, const ElasticityProblem& problem);
 
   // The prescribed values at pseudo-time t on every constrained dof (last condition wins).
   void set_targets(double t);

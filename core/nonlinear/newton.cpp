@@ -89,13 +89,39 @@ const ElasticityProblem& checked(const ElasticityProblem& problem) {
 
 QuasiStaticSolver::QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& problem, const NewtonSettings& settings,
                                      LinearSolver& linear)
+    : QuasiStaticSolver(comm, problem, nullptr, nullptr, settings, linear) {}
+
+QuasiStaticSolver::QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& problem, const mesh::LocalMesh& part,
+                                     const fem::PartOwnership& ownership, const NewtonSettings& settings,
+                                     LinearSolver& linear)
+    : QuasiStaticSolver(comm, problem, &part, &ownership, settings, linear) {}
+
+namespace {
+
+// A part's own cells as the partition of its mesh (its cells' owners in its numbering).
+fem::MeshPartition partition_of_part(MPI_Comm comm, const mesh::LocalMesh& part) {
+  fem::MeshPartition p;
+  MPI_Comm_rank(comm, &p.rank);
+  MPI_Comm_size(comm, &p.size);
+  p.cell_owner = part.cell_owner;
+  for (int c = 0; c < part.n_own_cells; ++c) p.owned_cells.push_back(c);
+  return p;
+}
+
+}  // namespace
+
+QuasiStaticSolver::QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& problem, const mesh::LocalMesh* part,
+                                     const fem::PartOwnership* ownership, const NewtonSettings& settings,
+                                     LinearSolver& linear)
     : problem_(checked(problem)),
       settings_(settings),
       linear_(linear),
-      lifting_(problem),
+      lifting_(comm, problem),
       constraints_(problem.constraints),
-      partition_(fem::partition_cells(comm, problem.space->mesh())),
-      layout_(comm, *problem.space, partition_, constraints_.multiplier_vertices()),
+      partition_(part ? partition_of_part(comm, *part) : fem::partition_cells(comm, problem.space->mesh())),
+      part_(part),
+      layout_(part ? fem::DofLayout(comm, *part, *problem.space, *ownership)
+                   : fem::DofLayout(comm, *problem.space, partition_, constraints_.multiplier_vertices())),
       builder_(layout_, problem, constraints_.n_multipliers()),
       pattern_(std::make_shared<fem::GhostPattern>(layout_, unknowns_read())),
       u_(pattern_),
@@ -127,7 +153,8 @@ fem::InternalForceStatus QuasiStaticSolver::residual(double t, fem::StateView u,
   }
   // Each rank integrates the cells that reach its owned rows (DofLayout::row_cells), so
   // those rows are complete; the rows of its ghosts are partial and never read.
-  auto status = fem::assemble_internal(space, problem_.cell_material, u, r.view(), nullptr, &layout_.row_cells());
+  auto status = with_whole_cell_ids(
+      fem::assemble_internal(space, problem_.cell_material, u, r.view(), nullptr, &layout_.row_cells()));
   add_loads(t, r.view());
   status.inverted_cell = fem::first_cell_over_ranks(layout_.comm(), status.inverted_cell);
   status.folded_cell = fem::first_cell_over_ranks(layout_.comm(), status.folded_cell);
@@ -137,6 +164,13 @@ fem::InternalForceStatus QuasiStaticSolver::residual(double t, fem::StateView u,
   } smallest{status.min_det_f, status.min_det_f_cell};
   MPI_Allreduce(MPI_IN_PLACE, &smallest, 1, MPI_DOUBLE_INT, MPI_MINLOC, layout_.comm());
   status.min_det_f = smallest.value, status.min_det_f_cell = smallest.cell;
+  return status;
+}
+
+fem::InternalForceStatus QuasiStaticSolver::with_whole_cell_ids(fem::InternalForceStatus status) const {
+  if (!part_) return status;
+  for (int* c : {&status.inverted_cell, &status.folded_cell, &status.min_det_f_cell})
+    if (*c >= 0) *c = part_->cell_ids[static_cast<size_t>(*c)];
   return status;
 }
 
@@ -488,7 +522,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
 
 QuasiStaticSolver::State QuasiStaticSolver::state() const {
   std::vector<double> u = u_.whole_on_root();
-  if (!u.empty()) u.resize(static_cast<size_t>(problem_.space->n_dofs()));
+  if (!u.empty()) u.resize(n_whole_dofs());
   State s{completed_step_, time_, std::move(u), lambda_, {}};
   s.constraints = constraints_.save_state();
   return s;
@@ -496,7 +530,7 @@ QuasiStaticSolver::State QuasiStaticSolver::state() const {
 
 std::vector<double> QuasiStaticSolver::displacement() const {
   std::vector<double> u = u_.whole();
-  u.resize(static_cast<size_t>(problem_.space->n_dofs()));
+  u.resize(n_whole_dofs());
   return u;
 }
 
@@ -513,7 +547,7 @@ void QuasiStaticSolver::restore(const Snapshot& s) {
 }
 
 void QuasiStaticSolver::restore(const State& s) {
-  const auto n_u = static_cast<size_t>(problem_.space->n_dofs());
+  const size_t n_u = n_whole_dofs();
   unsigned long long u_size = s.u.size();  // process 0's
   MPI_Bcast(&u_size, 1, MPI_UNSIGNED_LONG_LONG, 0, layout_.comm());
   if (u_size != n_u || s.lambda.size() != lambda_.size() || s.constraints.size() != constraints_.size())

@@ -50,6 +50,8 @@
 #include "fem/elasticity_assembly.hpp"
 #include "fem/ghosted_vector.hpp"
 #include "fem/mesh_partition.hpp"
+#include "fem/part_ownership.hpp"
+#include "mesh/local_mesh.hpp"
 #include "nonlinear/active_set_monitor.hpp"
 #include "nonlinear/constraint_set.hpp"
 #include "nonlinear/dirichlet_lifting.hpp"
@@ -153,6 +155,11 @@ class QuasiStaticSolver {
 public:
   QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& problem, const NewtonSettings& settings,
                     LinearSolver& linear);
+  // Over a mesh part (scene::divide_scene): problem.space is the part's space, ownership its
+  // unknowns' owners and indices; no contact yet. Outputs that are whole (displacement(),
+  // state()) are in the whole space's app order.
+  QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& problem, const mesh::LocalMesh& part,
+                    const fem::PartOwnership& ownership, const NewtonSettings& settings, LinearSolver& linear);
 
   // Newton for load step `step` in one increment, from the current state.
   StepResult solve_step(int step);
@@ -236,6 +243,8 @@ private:
   struct Residuals;
   // The unknowns this process reads besides its own: the nodes of its row cells (assembly),
   // of its own cells (output) and of every constraint's surfaces (contact).
+  QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& problem, const mesh::LocalMesh* part,
+                    const fem::PartOwnership* ownership, const NewtonSettings& settings, LinearSolver& linear);
   std::vector<PetscInt> unknowns_read() const;
   // The residual r(u) = f_int - f_ext at pseudo-time t (constrained rows included; on
   // several processes complete in the owned rows only), and the status over every process.
@@ -287,7 +296,14 @@ private:
   void split_update(Vec du, fem::GhostedVector& dv, std::vector<double>& dl) const;
   TrialStep take_step(double t, const fem::GhostedVector& dv, const std::vector<double>& dl, Residuals& rt);
   double contact_force_norm(const Residuals& r) const;
-  std::string describe_cell(int c) const { return mesh::describe_cell(problem_.space->mesh(), c); }
+  std::string describe_cell(int c) const {
+    return part_ ? "cell " + std::to_string(c) + " of the whole mesh" : mesh::describe_cell(problem_.space->mesh(), c);
+  }
+  // The cells a status names, in the whole mesh's numbering when the mesh is a part's (so
+  // that every process names the same cell).
+  fem::InternalForceStatus with_whole_cell_ids(fem::InternalForceStatus status) const;
+  // The whole space's displacement and pressure unknowns (the part's space holds fewer).
+  size_t n_whole_dofs() const { return static_cast<size_t>(layout_.n_total() - constraints_.n_multipliers()); }
   std::map<std::string, std::array<double, 3>> surface_forces() const;
 
   const ElasticityProblem& problem_;
@@ -295,7 +311,8 @@ private:
   LinearSolver& linear_;
   DirichletLifting lifting_;
   ConstraintSet constraints_;
-  fem::MeshPartition partition_;  // the cells this rank assembles
+  fem::MeshPartition partition_;  // the cells this rank assembles (over a part: its own cells)
+  const mesh::LocalMesh* part_;   // null over the whole mesh
   fem::DofLayout layout_;         // the Newton system's numbering across ranks
   NewtonSystemBuilder builder_;
   std::shared_ptr<const fem::GhostPattern> pattern_;  // what this process holds of u

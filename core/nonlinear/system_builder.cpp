@@ -1,6 +1,7 @@
 #include "nonlinear/system_builder.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "fem/elasticity_assembly.hpp"
@@ -8,16 +9,42 @@
 
 namespace stiction::nonlinear {
 
+namespace {
+
+// The mean of the mesh's vertices: over a part, of the whole mesh's (each vertex counted by
+// the process that owns it).
+std::array<double, 3> vertex_centroid(const fem::DofLayout& layout, const fem::FieldSpace& space) {
+  const mesh::Mesh& m = space.mesh();
+  const int d = space.dim();
+  std::array<double, 3> c = {0, 0, 0};
+  if (!layout.over_part()) {
+    for (int v = 0; v < m.n_vertices(); ++v)
+      for (int k = 0; k < d; ++k) c[k] += m.vertex(v)[k] / m.n_vertices();
+    return c;
+  }
+  std::vector<double> sum(4, 0.0);  // coordinates, then the count
+  for (int v = 0; v < m.n_vertices(); ++v)
+    if (layout.owns(static_cast<PetscInt>(v) * d)) {
+      for (int k = 0; k < d; ++k) sum[k] += m.vertex(v)[k];
+      sum[3] += 1;
+    }
+  fem::sum_over_ranks(layout.comm(), sum);
+  for (int k = 0; k < d; ++k) c[k] = sum[k] / sum[3];
+  return c;
+}
+
+}  // namespace
+
 MatNullSpace rigid_body_modes(const fem::DofLayout& layout, const fem::FieldSpace& space) {
   const MPI_Comm comm = layout.comm();
-  const int n_extra = static_cast<int>(layout.n_total()) - space.n_dofs();
+  const int n_extra = static_cast<int>(layout.n_held()) - space.n_dofs();
   const int d = space.dim();
-  const mesh::Mesh& m = space.mesh();
-  double c[3] = {0, 0, 0};  // rotate about the centroid: better-conditioned modes
-  for (int v = 0; v < m.n_vertices(); ++v)
-    for (int k = 0; k < d; ++k) c[k] += m.vertex(v)[k] / m.n_vertices();
+  const std::array<double, 3> c = vertex_centroid(layout, space);  // rotate about it: better-conditioned modes
   const int n_modes = d == 2 ? 3 : 6;
-  std::vector<std::vector<double>> modes(n_modes);
+  // Each mode's owned entries, in PETSc's order (zero on the multipliers).
+  const auto n_owned = static_cast<size_t>(layout.n_owned());
+  std::vector<std::vector<double>> modes(n_modes, std::vector<double>(n_owned, 0.0));
+  std::vector<double> held;
   for (int mode = 0; mode < n_modes; ++mode) {
     space.interpolate(
         [&](const double* X, double* out) {
@@ -35,27 +62,34 @@ MatNullSpace rigid_body_modes(const fem::DofLayout& layout, const fem::FieldSpac
             out[0] = -y, out[1] = x;
           }
         },
-        modes[mode]);
+        held);
+    for (size_t j = 0; j < n_owned; ++j)
+      if (const auto l = static_cast<size_t>(layout.local_of_owned(static_cast<PetscInt>(j))); l < held.size())
+        modes[mode][j] = held[l];
   }
   // Modified Gram-Schmidt: MatNullSpaceCreate requires orthonormal vectors.
+  const auto dot = [&](const std::vector<double>& a, const std::vector<double>& b) {
+    double s = 0;
+    for (size_t k = 0; k < a.size(); ++k) s += a[k] * b[k];
+    return layout.identity() ? s : fem::sum_over_ranks(comm, s);
+  };
   for (int i = 0; i < n_modes; ++i) {
     for (int j = 0; j < i; ++j) {
-      double dot = 0;
-      for (size_t k = 0; k < modes[i].size(); ++k) dot += modes[i][k] * modes[j][k];
-      for (size_t k = 0; k < modes[i].size(); ++k) modes[i][k] -= dot * modes[j][k];
+      const double ij = dot(modes[i], modes[j]);
+      for (size_t k = 0; k < n_owned; ++k) modes[i][k] -= ij * modes[j][k];
     }
-    double nrm = 0;
-    for (double v : modes[i]) nrm += v * v;
-    nrm = std::sqrt(nrm);
+    const double nrm = std::sqrt(dot(modes[i], modes[i]));
     for (double& v : modes[i]) v /= nrm;
   }
   std::vector<Vec> vecs(n_modes);
   const bool blocked = !space.has_pressure() && n_extra % d == 0 && layout.n_owned() % d == 0;
   for (int i = 0; i < n_modes; ++i) {
-    modes[i].resize(layout.n_total(), 0.0);
     vecs[i] = layout.create_vector();
     STICTION_PETSC(VecSetBlockSize(vecs[i], blocked ? d : 1));
-    layout.scatter(modes[i], vecs[i]);
+    PetscScalar* a;
+    STICTION_PETSC(VecGetArray(vecs[i], &a));
+    std::copy(modes[i].begin(), modes[i].end(), a);
+    STICTION_PETSC(VecRestoreArray(vecs[i], &a));
   }
   MatNullSpace nsp;
   STICTION_PETSC(MatNullSpaceCreate(comm, PETSC_FALSE, n_modes, vecs.data(), &nsp));
@@ -68,7 +102,7 @@ NewtonSystemBuilder::NewtonSystemBuilder(const fem::DofLayout& layout, const Ela
     : layout_(layout), problem_(problem) {
   const fem::FieldSpace& space = *problem.space;
   const MPI_Comm comm = layout.comm();
-  if (layout.n_total() != space.n_dofs() + n_multipliers)
+  if (layout.n_held() != space.n_dofs() + n_multipliers)
     throw Error("system builder: the layout does not number this system", ErrorKind::Internal);
   system_.comm = comm;
   system_.block_size = space.has_pressure() ? 1 : space.dim();

@@ -288,12 +288,22 @@ TEST_P(NumberedInParts, LayOutVectorsAndFieldBlocksAsTheWholeMesh) {
   for (PetscInt j = 0; j < layout.n_owned(); ++j) wrong_owned += layout.app(layout.local_of_owned(j)) != whole_layout.local_of_owned(j);
   EXPECT_EQ(wrong_owned, 0);
 
-  // Every field block: the displacement's vertex and edge blocks, the pressures where present.
-  std::vector<std::pair<int, int>> blocks = {whole.linear_block(), whole.quadratic_block()};
-  if (whole.has_pressure()) blocks.push_back(whole.pressure_block());
-  for (const auto& [first, last] : blocks) {
-    EXPECT_EQ(layout.owned_indices(first, last), whole_layout.owned_indices(first, last)) << first;
-    EXPECT_EQ(layout.block_numbering(first, last), whole_layout.block_numbering(first, last)) << first;
+  // Every field block (the displacement's vertex and edge blocks, the pressures where
+  // present), as the part's space and the whole space give its range: the same owned PETSc
+  // indices, and each held unknown's number within the block.
+  using Blocks = std::vector<std::pair<int, int>>;
+  Blocks blocks = {s.space->linear_block(), s.space->quadratic_block()};
+  Blocks whole_blocks = {whole.linear_block(), whole.quadratic_block()};
+  if (whole.has_pressure()) blocks.push_back(s.space->pressure_block()), whole_blocks.push_back(whole.pressure_block());
+  for (size_t b = 0; b < blocks.size(); ++b) {
+    const auto [first, last] = blocks[b];
+    const auto [whole_first, whole_last] = whole_blocks[b];
+    EXPECT_EQ(layout.owned_indices(first, last), whole_layout.owned_indices(whole_first, whole_last)) << b;
+    const std::vector<PetscInt> number = layout.block_numbering(first, last);
+    const std::vector<PetscInt> whole_number = whole_layout.block_numbering(whole_first, whole_last);
+    int wrong = 0;
+    for (PetscInt l = first; l < last; ++l) wrong += number[l - first] != whole_number[layout.app(l) - whole_first];
+    EXPECT_EQ(wrong, 0) << "block " << b << " of " << last - first;
   }
 
   // Whole app-ordered values into a distributed vector and back, through each layout.

@@ -1,0 +1,48 @@
+#include "scene/scene_part.hpp"
+
+#include "common/error.hpp"
+#include "fem/mesh_partition.hpp"
+#include "fem/part_numbering.hpp"
+
+namespace stiction::scene {
+
+std::unique_ptr<ScenePart> divide_scene(MPI_Comm comm, const Scene& scene, int levels) {
+  if (!scene.problem.constraints.empty())
+    throw Error("scene '" + scene.name + "': a scene with contact cannot be divided into mesh parts yet",
+                ErrorKind::Input);
+  const fem::FieldSpace& whole = *scene.space;
+  const fem::MeshPartition partition = fem::partition_cells(comm, scene.mesh);
+  auto out = std::make_unique<ScenePart>();
+  out->partitioner = partition.partitioner;
+  out->part = mesh::local_part(scene.mesh, partition.cell_owner, partition.rank);
+  for (int l = 0; l < levels; ++l) out->part = mesh::refine_parts(comm, out->part);
+  const mesh::LocalMesh& part = out->part;
+  // mesh::refine numbers the children of cell c consecutively from c * children.
+  long long children = 1;
+  for (int l = 0; l < levels; ++l) children *= scene.mesh.dim == 2 ? 4 : 8;
+
+  // A vertex carries a pressure when a cell of a mixed law holds it (as the scene decides).
+  std::vector<char> has_pressure;
+  const auto ancestor_law = [&](int c) {
+    return scene.problem.cell_material[static_cast<size_t>(part.cell_ids[c] / children)];
+  };
+  if (whole.has_pressure()) {
+    has_pressure.assign(part.mesh.n_vertices(), 0);
+    for (int c = 0; c < part.mesh.n_cells(); ++c)
+      if (ancestor_law(c)->mixed_bulk_modulus() > 0)
+        for (int k = 0; k <= part.mesh.dim; ++k) has_pressure[part.mesh.cell(c)[k]] = 1;
+  }
+  out->space = std::make_unique<fem::FieldSpace>(part.mesh, whole.kind(), has_pressure);
+  out->ownership = fem::own_part_unknowns(comm, part, *out->space, fem::number_part_space(comm, part, *out->space));
+
+  // The problem's conditions and loads are by facet tag and reference position, which the
+  // part's facets and vertices keep; its laws are by cell.
+  nonlinear::ElasticityProblem& p = out->problem;
+  p = scene.problem;
+  p.space = out->space.get();
+  p.cell_material.clear();
+  for (int c = 0; c < part.mesh.n_cells(); ++c) p.cell_material.push_back(ancestor_law(c));
+  return out;
+}
+
+}  // namespace stiction::scene

@@ -1,0 +1,44 @@
+#pragma once
+// A scene divided among MPI processes: each holds its part of the scene's mesh
+// (mesh::LocalMesh: its cells and the layer around them), that part's own space, and the
+// scene's problem over it (the same laws, boundary conditions and loads, addressed by the
+// part's cells and facets), instead of the whole mesh on every process. The cells are split
+// as fem::partition_cells splits the whole mesh, so a run on parts of the scene's own mesh
+// takes the whole-mesh run's distributed Newton path.
+//
+// With levels > 0 the parts are then refined where they are (mesh::refine_parts), so that
+// only the coarse mesh is ever whole: the result is the scene's mesh refined `levels` times
+// and divided as its coarse cells were (a child's law is its coarse ancestor's). That is the
+// scene's own finer level where its bodies are refined uniformly; a generator that re-meshes
+// each level (curved Gmsh geometry, structured tubes) gives another mesh there.
+//
+// Contact is not divided yet: a scene with contact pairs is refused.
+#include <memory>
+#include <string>
+
+#include <mpi.h>
+
+#include "fem/field_space.hpp"
+#include "fem/part_ownership.hpp"
+#include "mesh/local_mesh.hpp"
+#include "nonlinear/problem.hpp"
+#include "scene/scene.hpp"
+
+namespace stiction::scene {
+
+struct ScenePart {
+  mesh::LocalMesh part;
+  std::unique_ptr<fem::FieldSpace> space;  // over part.mesh
+  fem::PartOwnership ownership;            // of space's unknowns
+  nonlinear::ElasticityProblem problem;    // over space; its laws are the scene's
+  std::string partitioner;                 // what split the cells (empty on one process)
+
+  ScenePart() = default;
+  ScenePart(const ScenePart&) = delete;  // space points into part, problem into space
+  ScenePart& operator=(const ScenePart&) = delete;
+};
+
+// Collective. The scene must outlive the result (its laws and load functions are shared).
+std::unique_ptr<ScenePart> divide_scene(MPI_Comm comm, const Scene& scene, int levels = 0);
+
+}  // namespace stiction::scene
