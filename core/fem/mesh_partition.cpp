@@ -23,17 +23,7 @@ void dual_graph_rows(const mesh::Mesh& mesh, int first, int last, PetscInt** ia,
   std::vector<std::pair<std::array<int, 3>, int>> facets;
   facets.reserve(static_cast<size_t>(nc) * nv);
   for (int c = 0; c < nc; ++c)
-    for (int skip = 0; skip < nv; ++skip) {
-      std::array<int, 3> key{-1, -1, -1};
-      int k = 0;
-      for (int v = 0; v < nv; ++v)
-        if (v != skip) key[k++] = mesh.cell(c)[v];
-      // Three compare-swaps sort the key (in 2D its unused -1 comes first).
-      if (key[0] > key[1]) std::swap(key[0], key[1]);
-      if (key[1] > key[2]) std::swap(key[1], key[2]);
-      if (key[0] > key[1]) std::swap(key[0], key[1]);
-      facets.push_back({key, c});
-    }
+    for (const auto& key : mesh::cell_facet_keys(mesh.cell(c), mesh.dim)) facets.push_back({key, c});
   std::sort(facets.begin(), facets.end());
   std::vector<std::vector<PetscInt>> adjacent(static_cast<size_t>(last - first));
   for (size_t i = 0; i + 1 < facets.size(); ++i)

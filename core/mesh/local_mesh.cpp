@@ -76,11 +76,11 @@ void add_facets(LocalMesh& part, const std::vector<const CellRecord*>& cells, st
   const int d = part.mesh.dim;
   std::vector<std::array<int, 3>> faces;
   for (const CellRecord* c : cells)
-    for (const auto& key : face_keys(c->v.data(), d)) faces.push_back(key);
+    for (const auto& key : cell_facet_keys(c->v.data(), d)) faces.push_back(key);
   std::sort(faces.begin(), faces.end());
   sort_unique(facets, [](const FacetRecord& f) { return f.id; });
   for (const FacetRecord& f : facets) {
-    if (!std::binary_search(faces.begin(), faces.end(), sorted_key(f.v.data(), d))) continue;
+    if (!std::binary_search(faces.begin(), faces.end(), facet_key(f.v.data(), d))) continue;
     part.facet_ids.push_back(f.id);
     part.mesh.facet_tags.push_back(f.tag);
     for (int k = 0; k < d; ++k) part.mesh.facets.push_back(local_index(part.vertex_ids, f.v[k]));
@@ -103,25 +103,6 @@ void add_curved_edges(LocalMesh& part, const std::vector<const CellRecord*>& cel
 }
 
 }  // namespace
-
-std::array<int, 3> sorted_key(const int* v, int n) {
-  std::array<int, 3> key{-1, -1, -1};
-  std::copy(v, v + n, key.end() - n);
-  std::sort(key.begin(), key.end());
-  return key;
-}
-
-std::vector<std::array<int, 3>> face_keys(const int* v, int dim) {
-  std::vector<std::array<int, 3>> keys;
-  for (int skip = 0; skip <= dim; ++skip) {
-    std::array<int, 3> face{};
-    int k = 0;
-    for (int i = 0; i <= dim; ++i)
-      if (i != skip) face[k++] = v[i];
-    keys.push_back(sorted_key(face.data(), dim));
-  }
-  return keys;
-}
 
 int local_index(const std::vector<int>& sorted_ids, int id) {
   const auto it = std::lower_bound(sorted_ids.begin(), sorted_ids.end(), id);

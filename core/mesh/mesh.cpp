@@ -431,4 +431,23 @@ Mesh structured_box(int dim, const std::array<double, 3>& L, const std::array<in
   return m;
 }
 
+std::array<int, 3> facet_key(const int* v, int n) {
+  std::array<int, 3> key{-1, -1, -1};
+  std::copy(v, v + n, key.end() - n);
+  std::sort(key.begin(), key.end());
+  return key;
+}
+
+std::vector<std::array<int, 3>> cell_facet_keys(const int* v, int dim) {
+  std::vector<std::array<int, 3>> keys;
+  for (int skip = 0; skip <= dim; ++skip) {
+    std::array<int, 3> face{};
+    int k = 0;
+    for (int i = 0; i <= dim; ++i)
+      if (i != skip) face[k++] = v[i];
+    keys.push_back(facet_key(face.data(), dim));
+  }
+  return keys;
+}
+
 }  // namespace stiction::mesh

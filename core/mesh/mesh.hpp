@@ -77,6 +77,13 @@ struct EdgeTopology {
 };
 EdgeTopology build_edges(const Mesh& mesh);
 
+// The n <= 3 vertex ids sorted, padded in front with -1: the same key for a facet and for
+// the face of a cell it lies on.
+std::array<int, 3> facet_key(const int* v, int n);
+// The facets of a cell with vertices v (dim + 1 of them) as keys, the one opposite vertex
+// k at k.
+std::vector<std::array<int, 3>> cell_facet_keys(const int* v, int dim);
+
 // Uniform refinement: triangle -> 4, tetrahedron -> 8 (red refinement, the interior
 // octahedron split along its shortest diagonal); cell and facet tags are kept. On a curved
 // mesh the new vertices are the curved edges' midpoints and the children's edges follow the

@@ -38,11 +38,6 @@ struct PartRecords {
 // dimension come from `names`; the global counts are left to the caller.
 LocalMesh number_part(PartRecords& r, const Mesh& names, int rank);
 
-// The n <= 3 vertex ids sorted, padded in front with -1: the same key for a facet and for
-// the face of a cell it lies on.
-std::array<int, 3> sorted_key(const int* v, int n);
-// The faces of a cell with vertices v (dim + 1 of them), as sorted keys.
-std::vector<std::array<int, 3>> face_keys(const int* v, int dim);
 // The position of a global id in the part's ascending ids (an internal error if absent).
 int local_index(const std::vector<int>& sorted_ids, int id);
 

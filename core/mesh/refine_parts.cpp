@@ -136,11 +136,11 @@ Mesh in_global_order(const LocalMesh& part, std::vector<int>& position) {
 std::vector<std::vector<int>> facets_of_own_cells(const LocalMesh& part) {
   const Mesh& m = part.mesh;
   std::vector<std::pair<std::array<int, 3>, int>> by_key;
-  for (int f = 0; f < m.n_facets(); ++f) by_key.push_back({sorted_key(m.facet(f), m.dim), f});
+  for (int f = 0; f < m.n_facets(); ++f) by_key.push_back({facet_key(m.facet(f), m.dim), f});
   std::sort(by_key.begin(), by_key.end());
   std::vector<std::vector<int>> of_cell(part.n_own_cells);
   for (int c = 0; c < part.n_own_cells; ++c)
-    for (const auto& key : face_keys(m.cell(c), m.dim)) {
+    for (const auto& key : cell_facet_keys(m.cell(c), m.dim)) {
       auto it = std::lower_bound(by_key.begin(), by_key.end(), std::make_pair(key, -1));
       for (; it != by_key.end() && it->first == key; ++it) of_cell[c].push_back(it->second);
     }
