@@ -205,6 +205,13 @@ std::vector<const materials::Material*> part_materials(const SceneInParts& s) {
   return out;
 }
 
+// The whole mesh's internal forces at a whole state.
+std::vector<double> whole_residual(const SceneInParts& s, const std::vector<double>& u) {
+  std::vector<double> r(u.size(), 0.0);
+  EXPECT_EQ(fem::assemble_internal(*s.scene->space, s.scene->problem.cell_material, u, r, nullptr).inverted_cell, -1);
+  return r;
+}
+
 // A part carries what the assembly needs: the internal forces of its cells on its own space
 // (curved edges and pressures included), from the whole state's values at its unknowns, are
 // the whole residual's values at every unknown it owns (to round-off: the cells are summed
@@ -213,8 +220,7 @@ TEST_P(NumberedInParts, AssembleTheWholeResidualAtTheirOwnedUnknowns) {
   const SceneInParts s(GetParam());
   const fem::FieldSpace& whole = *s.scene->space;
   const std::vector<double> u_whole = random_whole_state(whole);
-  std::vector<double> r_whole(u_whole.size(), 0.0);
-  EXPECT_EQ(fem::assemble_internal(whole, s.scene->problem.cell_material, u_whole, r_whole, nullptr).inverted_cell, -1);
+  const std::vector<double> r_whole = whole_residual(s, u_whole);
 
   const fem::PartOwnership o = fem::own_part_unknowns(PETSC_COMM_WORLD, s.part, *s.space, s.numbering);
   std::vector<double> u(o.app.size()), r(o.app.size(), 0.0);
@@ -333,8 +339,7 @@ TEST_P(NumberedInParts, HoldTheStateAsGhostedVectors) {
   const SceneInParts s(GetParam());
   const fem::FieldSpace& whole = *s.scene->space;
   const std::vector<double> u_whole = random_whole_state(whole);
-  std::vector<double> r_whole(u_whole.size(), 0.0);
-  EXPECT_EQ(fem::assemble_internal(whole, s.scene->problem.cell_material, u_whole, r_whole, nullptr).inverted_cell, -1);
+  const std::vector<double> r_whole = whole_residual(s, u_whole);
 
   const fem::PartOwnership o = fem::own_part_unknowns(PETSC_COMM_WORLD, s.part, *s.space, s.numbering);
   const fem::DofLayout layout(PETSC_COMM_WORLD, s.part, *s.space, o);

@@ -56,6 +56,18 @@ double relative_difference(const std::vector<double>& a, const std::vector<doubl
   return diff / scale;
 }
 
+// The same converged forces and state, to 1e-8 relative.
+void expect_same_state(const NewtonPath& run, const NewtonPath& whole) {
+  ASSERT_EQ(run.forces.size(), whole.forces.size());
+  EXPECT_FALSE(whole.forces.empty());
+  for (size_t k = 0; k < whole.forces.size(); ++k) {
+    const std::vector<double> a(whole.forces[k].begin(), whole.forces[k].end()), b(run.forces[k].begin(), run.forces[k].end());
+    EXPECT_LT(relative_difference(a, b), 1e-8) << "force " << k;
+  }
+  ASSERT_EQ(run.displacement.size(), whole.displacement.size());
+  EXPECT_LT(relative_difference(whole.displacement, run.displacement), 1e-8);
+}
+
 class SolveInParts : public ::testing::TestWithParam<Case> {};
 
 TEST_P(SolveInParts, FollowsTheWholeMeshNewtonPath) {
@@ -75,14 +87,7 @@ TEST_P(SolveInParts, FollowsTheWholeMeshNewtonPath) {
 
   EXPECT_EQ(run.newton, whole.newton);
   EXPECT_EQ(run.krylov, whole.krylov);
-  ASSERT_EQ(run.forces.size(), whole.forces.size());
-  EXPECT_FALSE(whole.forces.empty());
-  for (size_t k = 0; k < whole.forces.size(); ++k) {
-    const std::vector<double> a(whole.forces[k].begin(), whole.forces[k].end()), b(run.forces[k].begin(), run.forces[k].end());
-    EXPECT_LT(relative_difference(a, b), 1e-8) << "force " << k;
-  }
-  ASSERT_EQ(run.displacement.size(), whole.displacement.size());
-  EXPECT_LT(relative_difference(whole.displacement, run.displacement), 1e-8);
+  expect_same_state(run, whole);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, SolveInParts,
@@ -115,14 +120,7 @@ TEST_P(SolveRefinedInParts, FollowsTheWholeFinerLevel) {
   const NewtonPath run = record(newton, last);
 
   EXPECT_EQ(run.newton, whole.newton);
-  ASSERT_EQ(run.forces.size(), whole.forces.size());
-  EXPECT_FALSE(whole.forces.empty());
-  for (size_t k = 0; k < whole.forces.size(); ++k) {
-    const std::vector<double> a(whole.forces[k].begin(), whole.forces[k].end()), b(run.forces[k].begin(), run.forces[k].end());
-    EXPECT_LT(relative_difference(a, b), 1e-8) << "force " << k;
-  }
-  ASSERT_EQ(run.displacement.size(), whole.displacement.size());
-  EXPECT_LT(relative_difference(whole.displacement, run.displacement), 1e-8);
+  expect_same_state(run, whole);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, SolveRefinedInParts, ::testing::Values("cook-membrane-2d", "cook-membrane-3d"),
