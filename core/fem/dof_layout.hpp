@@ -1,8 +1,9 @@
 #pragma once
 // The Newton system's numbering across MPI ranks. Its unknowns in stiction's own order
-// (the "app" order: displacement node by node, then pressures, then multipliers) stay the
-// index by which the assembly and the contact code address the state (fem::AppView, over
-// each rank's owned and ghost storage: fem::GhostedVector); PETSc's distributed matrix and
+// (the "app" order: displacement node by node, then pressures, then multipliers) are the
+// index by which, over the whole mesh, the assembly and the contact code address the state
+// (fem::AppView, over each rank's owned and ghost storage: fem::GhostedVector; over a mesh
+// part, see below); PETSc's distributed matrix and
 // vectors number them rank by rank instead, each rank's unknowns a contiguous range, in app
 // order within the rank. So on one rank the two numberings are the same, and nothing is
 // permuted.
