@@ -6,7 +6,9 @@
 
 #include "common/error.hpp"
 #include "mesh/mesh.hpp"
+#include "registry.hpp"
 #include "scene/scene.hpp"
+#include "scene/scene_part.hpp"
 #include "builtin_scenes.hpp"
 #include "support/solve_scene.hpp"
 
@@ -230,3 +232,27 @@ TEST(Scene, SchemaDocumentsEveryKey) {
 
 }  // namespace
 }  // namespace stiction::scene
+
+namespace stiction {
+namespace {
+
+// On one process a scene's part is the whole scene (refined in parts: the whole finer
+// level), and solving on it is the whole-mesh run, bit for bit.
+TEST(ScenePart, OnOneProcessSolvesAsTheWholeScene) {
+  const test::SolvedScene fine = test::solve_builtin("cook-membrane-2d", 1, "lu-mumps");
+  ASSERT_TRUE(fine.converged());
+  const auto coarse = harness::open_scene("cook-membrane-2d", 0, {});
+  const auto parts = scene::divide_scene(PETSC_COMM_WORLD, *coarse, 1);
+  EXPECT_EQ(parts->part.mesh.n_cells(), fine.scene->mesh.n_cells());
+  EXPECT_EQ(parts->part.mesh.coords, fine.scene->mesh.coords);
+  auto solver = solvers::create_solver("lu-mumps", PETSC_COMM_WORLD);
+  nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, parts->problem, parts->part, parts->ownership,
+                                      fine.scene->newton, *solver);
+  const auto steps = newton.run();
+  ASSERT_EQ(steps.size(), fine.steps.size());
+  for (size_t k = 0; k < steps.size(); ++k) EXPECT_EQ(steps[k].iterations.size(), fine.steps[k].iterations.size());
+  EXPECT_EQ(newton.displacement(), fine.u);
+}
+
+}  // namespace
+}  // namespace stiction
