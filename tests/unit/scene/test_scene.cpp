@@ -256,3 +256,62 @@ TEST(ScenePart, OnOneProcessSolvesAsTheWholeScene) {
 
 }  // namespace
 }  // namespace stiction
+
+namespace stiction {
+namespace {
+
+// Refined in parts, each cell keeps the law of its body: two bodies of different laws, as
+// the whole scene refined gives them cell by cell.
+TEST(ScenePart, RefinedCellsKeepTheirBodysLaw) {
+  const std::string text = R"(
+[[material]]
+name = "stiff"
+model = "linear"
+E = 200.0
+nu = 0.3
+
+[[material]]
+name = "soft"
+model = "neo-hookean"
+E = 2.0
+nu = 0.3
+
+[[body]]
+name = "left"
+material = "stiff"
+mesh = { generator = "polygon", points = [0.0, 0.0, 2.0, 0.0, 2.0, 1.0, 0.0, 1.0], sides = ["base", "right", "top", "side"], h = 0.5 }
+
+[[body]]
+name = "right"
+material = "soft"
+mesh = { generator = "polygon", points = [3.0, 0.0, 5.0, 0.0, 5.0, 1.0, 3.0, 1.0], sides = ["base", "right", "top", "side"], h = 0.4 }
+
+[[dirichlet]]
+body = "left"
+boundary = "base"
+components = ["x", "y"]
+value = [0.0, 0.0]
+
+[[dirichlet]]
+body = "right"
+boundary = "base"
+components = ["x", "y"]
+value = [0.0, 0.0]
+)";
+  const auto coarse = scene::build_scene(text, "two-bodies", ".", 0);
+  const auto fine = scene::build_scene(text, "two-bodies", ".", 2);
+  const auto parts = scene::divide_scene(PETSC_COMM_WORLD, *coarse, 2);
+  ASSERT_EQ(parts->problem.cell_material.size(), fine->problem.cell_material.size());
+  int wrong = 0, soft = 0;
+  for (size_t c = 0; c < fine->problem.cell_material.size(); ++c) {
+    const std::string law = parts->problem.cell_material[c]->describe();
+    wrong += law != fine->problem.cell_material[c]->describe();
+    soft += law == fine->materials[1]->describe();
+  }
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GT(soft, 0);
+  EXPECT_LT(soft, static_cast<int>(fine->problem.cell_material.size()));
+}
+
+}  // namespace
+}  // namespace stiction
