@@ -17,6 +17,7 @@
 #include "nonlinear/newton.hpp"
 #include "registry.hpp"
 #include "scene/scene_part.hpp"
+#include "support/test_names.hpp"
 
 namespace {
 
@@ -94,9 +95,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, SolveInParts,
                          ::testing::Values(Case{"cook-membrane-2d", "lu-mumps"}, Case{"block-compression", "schur-amg"},
                                            Case{"mooney-rivlin-block", "schur-amg"}),
                          [](const auto& info) {
-                           std::string name = std::string(info.param.scene) + "_" + info.param.backend;
-                           std::replace(name.begin(), name.end(), '-', '_');
-                           return name;
+                           return test::identifier(std::string(info.param.scene) + "_" + info.param.backend);
                          });
 
 // Only the coarse mesh whole: a scene's level 0 divided, then refined in parts, is solved as
@@ -124,11 +123,7 @@ TEST_P(SolveRefinedInParts, FollowsTheWholeFinerLevel) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, SolveRefinedInParts, ::testing::Values("cook-membrane-2d", "cook-membrane-3d"),
-                         [](const auto& info) {
-                           std::string name = info.param;
-                           std::replace(name.begin(), name.end(), '-', '_');
-                           return name;
-                         });
+                         [](const auto& info) { return test::identifier(info.param); });
 
 // Contact is not divided yet: such a scene is refused with a message, not run wrongly.
 TEST(SolveInParts, RefusesAContactScene) {
