@@ -12,10 +12,10 @@ namespace stiction::harness {
 namespace {
 
 // (key in StepResult::surface_forces, column prefix) of every traction integral.
-std::vector<std::pair<std::string, std::string>> traction_columns(const scene::Scene& s) {
+std::vector<std::pair<std::string, std::string>> traction_columns(const nonlinear::ElasticityProblem& p) {
   std::vector<std::pair<std::string, std::string>> out;
-  for (const auto& bc : s.problem.dirichlet) out.emplace_back(bc.name, "traction_" + bc.name);
-  for (const auto* c : s.problem.constraints)
+  for (const auto& bc : p.dirichlet) out.emplace_back(bc.name, "traction_" + bc.name);
+  for (const auto* c : p.constraints)
     for (const auto& [role, tag] : c->surfaces())
       out.emplace_back(c->name() + "/" + role, fmt::format("contact_{}_{}_traction", c->name(), role));
   return out;
@@ -37,8 +37,11 @@ bool open_table(std::ofstream& out, const std::string& path, const std::string& 
 
 }  // namespace
 
-StepTable::StepTable(const std::string& path, const std::string& header_comment, const scene::Scene& s, bool append) {
+StepTable::StepTable(const std::string& path, const std::string& header_comment, const scene::SceneView& view,
+                     bool append) {
   if (!open_table(out_, path, header_comment, append)) return;
+  const nonlinear::ElasticityProblem& p = *view.problem;
+  const int dim = view.dim();
   // One row per load increment: `time` is the pseudo-time it ends at, `cut` how many times
   // its step's increment was halved, `retried` marks a failed attempt retried over half of it.
   out_ << "step,time,cut,retried,converged,reason,newton_iterations,initial_residual,reference_residual,final_residual,"
@@ -46,24 +49,26 @@ StepTable::StepTable(const std::string& path, const std::string& header_comment,
   // Forces on each Dirichlet boundary: nodal reactions (the paper's F2), then the
   // integral of the traction P N on each Dirichlet boundary (F1) and contact surface
   // (slave: F4, master: -F5).
-  for (const auto& bc : s.problem.dirichlet)
-    for (int k = 0; k < s.mesh.dim; ++k) out_ << fmt::format(",reaction_{}_{}", bc.name, "xyz"[k]);
-  for (const auto& [key, column] : traction_columns(s))
-    for (int k = 0; k < s.mesh.dim; ++k) out_ << fmt::format(",{}_{}", column, "xyz"[k]);
+  for (const auto& bc : p.dirichlet)
+    for (int k = 0; k < dim; ++k) out_ << fmt::format(",reaction_{}_{}", bc.name, "xyz"[k]);
+  for (const auto& [key, column] : traction_columns(p))
+    for (int k = 0; k < dim; ++k) out_ << fmt::format(",{}_{}", column, "xyz"[k]);
   // Contact: the integral of lambda over the slave surface (F3), the final states and how
   // many states changed over the step's Newton iterations.
-  for (const auto* c : s.problem.constraints) {
-    for (int k = 0; k < s.mesh.dim; ++k) out_ << fmt::format(",contact_{}_force_{}", c->name(), "xyz"[k]);
+  for (const auto* c : p.constraints) {
+    for (int k = 0; k < dim; ++k) out_ << fmt::format(",contact_{}_force_{}", c->name(), "xyz"[k]);
     out_ << fmt::format(",contact_{0}_inactive,contact_{0}_stick,contact_{0}_slip", c->name());
   }
-  if (!s.problem.constraints.empty()) out_ << ",state_changes";
+  if (!p.constraints.empty()) out_ << ",state_changes";
   // The smallest det F of the converged state (empty without finite-strain cells): how
   // close a cell came to folding.
   out_ << ",min_det_f\n";
   out_.flush();
 }
 
-void StepTable::add(const nonlinear::StepResult& r, const scene::Scene& s) {
+void StepTable::add(const nonlinear::StepResult& r, const scene::SceneView& view) {
+  const nonlinear::ElasticityProblem& p = *view.problem;
+  const int dim = view.dim();
   int krylov = 0;
   double assembly = 0, setup = 0, solve = 0;
   for (const auto& it : r.iterations) {
@@ -76,26 +81,26 @@ void StepTable::add(const nonlinear::StepResult& r, const scene::Scene& s) {
                       r.cut, r.retried ? 1 : 0, r.converged() ? 1 : 0,
                       nonlinear::to_string(r.reason), r.iterations.size(), r.initial_residual, r.reference_residual,
                       r.final_residual, krylov, assembly, setup, solve, r.wall_seconds);
-  for (const auto& bc : s.problem.dirichlet) {
+  for (const auto& bc : p.dirichlet) {
     auto it = r.reactions.find(bc.name);
-    for (int k = 0; k < s.mesh.dim; ++k)
+    for (int k = 0; k < dim; ++k)
       out_ << (it == r.reactions.end() ? std::string(",") : fmt::format(",{:.10e}", it->second[k]));
   }
-  for (const auto& [key, column] : traction_columns(s)) {
+  for (const auto& [key, column] : traction_columns(p)) {
     auto it = r.surface_forces.find(key);
-    for (int k = 0; k < s.mesh.dim; ++k)
+    for (int k = 0; k < dim; ++k)
       out_ << (it == r.surface_forces.end() ? std::string(",") : fmt::format(",{:.10e}", it->second[k]));
   }
-  for (size_t c = 0; c < s.problem.constraints.size(); ++c) {
+  for (size_t c = 0; c < p.constraints.size(); ++c) {
     if (c >= r.contact.size()) {  // not converged: no contact figures
-      out_ << std::string(static_cast<size_t>(s.mesh.dim) + 3, ',');
+      out_ << std::string(static_cast<size_t>(dim) + 3, ',');
       continue;
     }
     const auto& cs = r.contact[c];
-    for (int k = 0; k < s.mesh.dim; ++k) out_ << fmt::format(",{:.10e}", cs.force[k]);
+    for (int k = 0; k < dim; ++k) out_ << fmt::format(",{:.10e}", cs.force[k]);
     out_ << fmt::format(",{},{},{}", cs.inactive, cs.stick, cs.slip);
   }
-  if (!s.problem.constraints.empty()) {
+  if (!p.constraints.empty()) {
     int changes = 0;
     for (const auto& it : r.iterations) changes += it.state_changes;
     out_ << fmt::format(",{}", changes);
@@ -105,10 +110,10 @@ void StepTable::add(const nonlinear::StepResult& r, const scene::Scene& s) {
 }
 
 std::vector<std::pair<std::string, std::vector<nonlinear::MultiplierNode>>> multiplier_nodes(
-    const scene::Scene& s, double t, fem::StateView u, const std::vector<double>& lambda) {
+    const nonlinear::ElasticityProblem& p, double t, fem::StateView u, const std::vector<double>& lambda) {
   std::vector<std::pair<std::string, std::vector<nonlinear::MultiplierNode>>> out;
   size_t offset = 0;
-  for (const auto* c : s.problem.constraints) {
+  for (const auto* c : p.constraints) {
     out.emplace_back(c->name(), c->nodes(t, u, lambda.data() + offset));
     offset += static_cast<size_t>(c->n_multipliers());
   }
@@ -132,7 +137,7 @@ ContactTable::ContactTable(const std::string& path, const std::string& header_co
 
 void ContactTable::add(const nonlinear::StepResult& r, const scene::Scene& s, fem::StateView u,
                        const std::vector<double>& lambda) {
-  for (const auto& [pair, nodes] : multiplier_nodes(s, r.time, u, lambda))
+  for (const auto& [pair, nodes] : multiplier_nodes(s.problem, r.time, u, lambda))
     for (size_t i = 0; i < nodes.size(); ++i) {
       const auto& n = nodes[i];
       out_ << fmt::format("{},{:.10g},{},{},{}", r.step, r.time, pair, i, n.vertex);

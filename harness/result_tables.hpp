@@ -9,13 +9,15 @@
 
 #include "nonlinear/newton.hpp"
 #include "scene/scene.hpp"
+#include "scene/scene_view.hpp"
 
 namespace stiction::harness {
 
 class StepTable {
 public:
-  StepTable(const std::string& path, const std::string& header_comment, const scene::Scene& s, bool append = false);
-  void add(const nonlinear::StepResult& r, const scene::Scene& s);
+  StepTable(const std::string& path, const std::string& header_comment, const scene::SceneView& s,
+            bool append = false);
+  void add(const nonlinear::StepResult& r, const scene::SceneView& s);
 
 private:
   std::ofstream out_;
@@ -34,9 +36,9 @@ private:
   int dim_;
 };
 
-// The multiplier nodes of every constraint of s at (t, u, lambda), with each one's name.
+// The multiplier nodes of every constraint of p at (t, u, lambda), with each one's name.
 std::vector<std::pair<std::string, std::vector<nonlinear::MultiplierNode>>> multiplier_nodes(
-    const scene::Scene& s, double t, fem::StateView u, const std::vector<double>& lambda);
+    const nonlinear::ElasticityProblem& p, double t, fem::StateView u, const std::vector<double>& lambda);
 
 class IterationTable {
 public:

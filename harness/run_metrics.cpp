@@ -84,10 +84,9 @@ std::optional<EarlierSegments> read_earlier_segments(const std::string& path, co
   return e;
 }
 
-void write_metrics(const std::string& path, const scene::Scene& scene, const RunSummary& summary,
+void write_metrics(const std::string& path, const scene::SceneView& scene, const RunSummary& summary,
                    const std::vector<nonlinear::StepResult>& steps, const EarlierSegments* earlier,
                    const nonlinear::StepResult* in_progress) {
-  const auto& space = *scene.space;
   toml::array step_rows, solve_rows;
   if (earlier) step_rows = earlier->steps, solve_rows = earlier->linear_solves;
   append_rows(steps, step_rows, solve_rows);
@@ -114,24 +113,22 @@ void write_metrics(const std::string& path, const scene::Scene& scene, const Run
   double peak_sum = summary.peak_rss_mb_sum;
   if (earlier) peak = std::max(peak, earlier->peak_rss_mb), peak_sum = std::max(peak_sum, earlier->peak_rss_mb_sum);
   int64_t multipliers = 0;
-  for (const auto& c : scene.contacts) multipliers += c->n_multipliers();
-  const auto [l0, l1] = space.linear_block();
-  const auto [q0, q1] = space.quadratic_block();
-  toml::table run{{"scene", scene.name},
+  for (const auto* c : scene.problem->constraints) multipliers += c->n_multipliers();
+  toml::table run{{"scene", scene.scene->name},
                   {"level", scene.level},
                   {"solver", summary.solver},
-                  {"basis", fem::to_string(space.kind())},
-                  {"unknowns", space.n_dofs()},
-                  {"unknowns_u_l", l1 - l0},
-                  {"unknowns_u_q", q1 - q0},
-                  {"unknowns_p", space.n_pressure_dofs()},
+                  {"basis", fem::to_string(scene.space->kind())},
+                  {"unknowns", scene.n_dofs()},
+                  {"unknowns_u_l", scene.n_linear},
+                  {"unknowns_u_q", scene.n_quadratic},
+                  {"unknowns_p", scene.n_pressure},
                   {"multipliers", multipliers},
-                  {"vertices", scene.mesh.n_vertices()},
-                  {"cells", scene.mesh.n_cells()},
+                  {"vertices", scene.n_vertices},
+                  {"cells", scene.n_cells},
                   {"converged", summary.converged},
                   {"reason", summary.reason},
                   {"detail", summary.detail},
-                  {"load_steps", scene.problem.n_steps()},
+                  {"load_steps", scene.problem->n_steps()},
                   {"load_steps_completed", completed},
                   {"load_increments_retried", cuts},
                   {"newton_iterations", newton},
@@ -142,8 +139,8 @@ void write_metrics(const std::string& path, const scene::Scene& scene, const Run
                   {"assembly_seconds", assembly},
                   {"setup_seconds", setup},
                   {"solve_seconds", solve},
-                  {"newton_rtol", scene.newton.rtol},
-                  {"newton_forcing", nonlinear::to_string(scene.newton.forcing)},
+                  {"newton_rtol", scene.scene->newton.rtol},
+                  {"newton_forcing", nonlinear::to_string(scene.scene->newton.forcing)},
                   {"processes", summary.processes},
                   {"peak_rss_mb", peak},
                   {"backend_options", summary.backend_options}};
@@ -158,7 +155,7 @@ void write_metrics(const std::string& path, const scene::Scene& scene, const Run
   if (std::rename(tmp.c_str(), path.c_str()) != 0) throw Error(fmt::format("cannot write metrics file '{}'", path));
 }
 
-RunRecorder::RunRecorder(std::string path, const scene::Scene& scene, RunSummary base, MPI_Comm comm,
+RunRecorder::RunRecorder(std::string path, const scene::SceneView& scene, RunSummary base, MPI_Comm comm,
                          std::optional<EarlierSegments> earlier, std::chrono::steady_clock::time_point start,
                          std::chrono::duration<double> in_progress_interval)
     : path_(std::move(path)),

@@ -26,6 +26,7 @@
 
 #include "nonlinear/newton.hpp"
 #include "scene/scene.hpp"
+#include "scene/scene_view.hpp"
 
 namespace stiction::harness {
 
@@ -60,7 +61,7 @@ std::optional<EarlierSegments> read_earlier_segments(const std::string& path, co
 // over all rows, wall time summed over the segments, peak memory the largest of them.
 // in_progress: the Newton iterations of the increment under way, when there is one (an
 // IN_PROGRESS step row; its solves count in the totals, its load step does not).
-void write_metrics(const std::string& path, const scene::Scene& scene, const RunSummary& summary,
+void write_metrics(const std::string& path, const scene::SceneView& scene, const RunSummary& summary,
                    const std::vector<nonlinear::StepResult>& steps, const EarlierSegments* earlier = nullptr,
                    const nonlinear::StepResult* in_progress = nullptr);
 
@@ -71,7 +72,7 @@ void write_metrics(const std::string& path, const scene::Scene& scene, const Run
 class RunRecorder {
  public:
   // start: when the process started its work (the wall time counts from there).
-  RunRecorder(std::string path, const scene::Scene& scene, RunSummary base, MPI_Comm comm,
+  RunRecorder(std::string path, const scene::SceneView& scene, RunSummary base, MPI_Comm comm,
               std::optional<EarlierSegments> earlier, std::chrono::steady_clock::time_point start,
               std::chrono::duration<double> in_progress_interval = std::chrono::seconds(30));
   void add(const nonlinear::StepResult& attempt);
@@ -86,7 +87,7 @@ class RunRecorder {
  private:
   void write(bool converged, const std::string& reason, const std::string& detail);
   std::string path_;
-  const scene::Scene& scene_;
+  scene::SceneView scene_;
   RunSummary base_;
   MPI_Comm comm_;
   std::optional<EarlierSegments> earlier_;

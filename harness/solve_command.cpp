@@ -18,6 +18,7 @@
 #include "ksp_solver.hpp"
 #include "registry.hpp"
 #include "result_tables.hpp"
+#include "run_scene.hpp"
 #include "run_metrics.hpp"
 #include "system_record.hpp"
 #include "vtu_writer.hpp"
@@ -38,6 +39,19 @@ void print_state_change(const nonlinear::QuasiStaticSolver::StateChange& c) {
              n.position[0], n.position[1], n.position[2]);
 }
 
+// The header line of a run on several processes: how the cells were split and what each
+// process holds.
+std::string describe_processes(const RunScene& run, int processes, const std::string& partitioner) {
+  if (!run.part)
+    return fmt::format("# MPI processes: {} (cells split by {}; the mesh whole on each, the Newton state held per "
+                       "process)\n", processes, partitioner);
+  return fmt::format("# MPI processes: {} (cells split by {}{}; each holds its part of the mesh, with the space and "
+                     "the Newton state over it)\n", processes, run.part->partitioner,
+                     run.refined_in_parts > 0
+                         ? fmt::format(" at level 0, each part then refined to level {} where it is", run.level())
+                         : std::string());
+}
+
 }  // namespace
 
 void run_solve(const SolveOptions& o, const RunInfo& info) {
@@ -50,7 +64,9 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   const bool writer = rank == 0;
   if (processes > 1 && !o.record_dir.empty())
     throw Error(fmt::format("--record runs on one MPI process (launched on {})", processes));
-  auto scene = open_scene(o.scene, o.level, o.overrides);
+  RunScene run = open_run_scene(PETSC_COMM_WORLD, o.scene, o.level, o.overrides, o.whole_mesh);
+  auto& scene = run.scene;
+  const scene::SceneView& view = *run.view;
   if (!o.forcing.empty()) scene->newton.forcing = nonlinear::forcing_from_string(o.forcing);
   if (o.newton_rtol >= 0) scene->newton.rtol = o.newton_rtol;
   // Precedence of the Krylov tolerance: --krylov-rtol, then a -<backend>_ksp_rtol given on
@@ -64,28 +80,26 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   }
   auto solver = solvers::create_solver(o.solver, PETSC_COMM_WORLD);
   const bool restart = !o.restart_dir.empty();
-  std::string out_dir = o.out_dir.empty() ? fmt::format("out/{}-L{}", scene->name, scene->level) : o.out_dir;
+  std::string out_dir = o.out_dir.empty() ? fmt::format("out/{}-L{}", scene->name, run.level()) : o.out_dir;
   if (restart && o.out_dir.empty()) out_dir = o.restart_dir;
   Checkpoint resume;
   if (restart) {
     resume = read_checkpoint(PETSC_COMM_WORLD, o.restart_dir + "/checkpoint.bin");
-    if (resume.scene != scene->name || resume.level != scene->level)
+    if (resume.scene != scene->name || resume.level != run.level())
       throw Error(fmt::format("checkpoint in '{}' is of scene '{}' level {}, not '{}' level {}", o.restart_dir,
-                              resume.scene, resume.level, scene->name, scene->level));
+                              resume.scene, resume.level, scene->name, run.level()));
   }
   std::error_code ec;
   if (writer) std::filesystem::create_directories(out_dir, ec);
   if (ec) throw Error(fmt::format("cannot create output directory '{}': {}", out_dir, ec.message()));
 
-  const auto& space = *scene->space;
   std::string header = format_run_info(info, "# ");
-  header += fmt::format("# scene: {} ({}), level {}, basis {}\n", scene->name, scene->origin, scene->level,
-                        fem::to_string(space.kind()));
+  header += fmt::format("# scene: {} ({}), level {}, basis {}\n", scene->name, scene->origin, run.level(),
+                        fem::to_string(view.space->kind()));
   for (size_t b = 0; b < scene->body_names.size(); ++b)
     header += fmt::format("# body {}: {}\n", scene->body_names[b], scene->material_of_body[b]);
-  header += fmt::format("# mesh: {} vertices, {} cells; unknowns: u_l {}, u_q {}, total {}\n", scene->mesh.n_vertices(),
-                        scene->mesh.n_cells(), space.linear_block().second - space.linear_block().first,
-                        space.quadratic_block().second - space.quadratic_block().first, space.n_dofs());
+  header += fmt::format("# mesh: {} vertices, {} cells; unknowns: u_l {}, u_q {}, total {}\n", view.n_vertices,
+                        view.n_cells, view.n_linear, view.n_quadratic, view.n_dofs());
   header += fmt::format("# solver: {}; newton atol {:g}, rtol {:g}, max_iterations {}, forcing {}, krylov rtol {}\n",
                         o.solver, scene->newton.atol, scene->newton.rtol, scene->newton.max_iterations,
                         nonlinear::to_string(scene->newton.forcing),
@@ -95,11 +109,9 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   if (restart)
     header += fmt::format("# restarted from '{}' after load step {} (t = {:g})\n", o.restart_dir, resume.state.step,
                           resume.state.time);
-  nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, scene->problem, scene->newton, *solver);
-  if (processes > 1)
-    header += fmt::format(
-        "# MPI processes: {} (cells split by {}; the mesh whole on each, the Newton state held per process)\n",
-        processes, newton.partition().partitioner);
+  const auto newton_ptr = make_quasi_static_solver(PETSC_COMM_WORLD, run, *solver);
+  nonlinear::QuasiStaticSolver& newton = *newton_ptr;
+  if (processes > 1) header += describe_processes(run, processes, newton.partition().partitioner);
   const bool verbose = !o.quiet && writer;
   if (verbose) fmt::print(stderr, "{}", header);
 
@@ -109,7 +121,7 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   if (scene->output.csv && writer) {
     if (!scene->problem.constraints.empty())
       contact_table = std::make_unique<ContactTable>(out_dir + "/contact.csv", header, scene->mesh.dim, restart);
-    table = std::make_unique<StepTable>(out_dir + "/steps.csv", header, *scene, restart);
+    table = std::make_unique<StepTable>(out_dir + "/steps.csv", header, view, restart);
     iteration_table = std::make_unique<IterationTable>(out_dir + "/iterations.csv", header,
                                                        !scene->problem.constraints.empty(), restart);
   }
@@ -122,7 +134,7 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   }
   const int first_step = restart ? resume.state.step + 1 : 1;
   if (!o.record_dir.empty()) {
-    const RecordContext context{scene->name, scene->level, o.solver, info};
+    const RecordContext context{scene->name, run.level(), o.solver, info};
     newton.set_system_observer([&, context](const nonlinear::NewtonSystem& sys, Vec du,
                                             const nonlinear::LinearSolveStats& stats, int step, int iteration) {
       record_system(o.record_dir, sys, du, stats, step, iteration, context);
@@ -142,12 +154,12 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
       pvd->add(r.time, stem + ".vtu");
       return;
     }
-    write_vtu_piece(fmt::format("{}/{}-p{}.vtu", out_dir, stem, rank), *scene, u, newton.multipliers(), r.time,
+    write_vtu_piece(fmt::format("{}/{}-p{}.vtu", out_dir, stem, rank), view, u, newton.multipliers(), r.time,
                     newton.partition().owned_cells, rank);
     if (!writer) return;
     std::vector<std::string> pieces;
     for (int k = 0; k < processes; ++k) pieces.push_back(fmt::format("{}-p{}.vtu", stem, k));
-    write_pvtu(out_dir + "/" + stem + ".pvtu", *scene, newton.multipliers(), pieces);
+    write_pvtu(out_dir + "/" + stem + ".pvtu", view, newton.multipliers(), pieces);
     pvd->add(r.time, stem + ".pvtu");
   };
   std::unique_ptr<RunRecorder> record;
@@ -159,15 +171,15 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
     RunSummary base{o.solver, solvers::default_options(o.solver) + from_environment + o.petsc_options};
     base.processes = processes;
     record = std::make_unique<RunRecorder>(
-        o.metrics_path, *scene, base, PETSC_COMM_WORLD,
-        restart ? read_earlier_segments(o.metrics_path, scene->name, scene->level, o.solver, resume.state.step)
+        o.metrics_path, view, base, PETSC_COMM_WORLD,
+        restart ? read_earlier_segments(o.metrics_path, scene->name, run.level(), o.solver, resume.state.step)
                 : std::nullopt,
         t_start);
     newton.set_iteration_observer(
         [&](int step, double t, const nonlinear::NewtonIteration& it) { record->add_iteration(step, t, it); });
   }
   auto results = newton.run([&](const nonlinear::StepResult& r) {
-    if (table) table->add(r, *scene);
+    if (table) table->add(r, view);
     if (iteration_table) iteration_table->add(r);
     if (record) record->add(r);  // before the checkpoint
     if (r.completes_step) {
@@ -176,7 +188,7 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
       const nonlinear::QuasiStaticSolver::State state = newton.state();
       if (writer)
         write_checkpoint(out_dir + "/checkpoint.bin",
-                         {scene->name, scene->level, state, newton.linear_tally(), newton.cut_back()});
+                         {scene->name, run.level(), state, newton.linear_tally(), newton.cut_back()});
       if (contact_table) contact_table->add(r, *scene, newton.held_displacement(), newton.multipliers());
       if (scene->output.vtu && o.write_vtu) write_step_output(r);
     }

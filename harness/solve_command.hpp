@@ -26,6 +26,7 @@ struct SolveOptions {
   std::string petsc_options;     // the PETSc options given on the command line, for reports
   bool quiet = false;
   bool trace_contact = false;    // print every contact state change per Newton iteration
+  bool whole_mesh = false;       // on several processes, every one holds the whole mesh (harness/run_scene.hpp)
 };
 
 // Throws stiction::Error (Numerical) when a load step fails, after writing what finished.

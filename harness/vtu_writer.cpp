@@ -103,7 +103,7 @@ std::vector<int> piece_points(const fem::FieldSpace& space, const std::vector<in
 
 // Displacement, pressure of mixed bodies, and with contact, at the slave vertices, the
 // multiplier, its normal part and the contact state.
-void add_point_data(Piece& p, const scene::Scene& scene, fem::StateView u, const std::vector<double>& lambda, double t,
+void add_point_data(Piece& p, const scene::SceneView& scene, fem::StateView u, const std::vector<double>& lambda, double t,
                     const std::vector<int>& used, const std::vector<int>& local) {
   const fem::FieldSpace& space = *scene.space;
   std::vector<double> displacement(static_cast<size_t>(p.n_points) * 3, 0.0);
@@ -114,11 +114,11 @@ void add_point_data(Piece& p, const scene::Scene& scene, fem::StateView u, const
     for (int k = 0; k < p.n_points; ++k) mine[k] = space.nodal_pressure(u, used[k]);
     p.point_data.push_back({"pressure", 1, std::move(mine)});
   }
-  if (scene.problem.constraints.empty() || lambda.empty()) return;
+  if (scene.problem->constraints.empty() || lambda.empty()) return;
   std::vector<std::int32_t> state(p.n_points, -1);
   std::vector<double> multiplier(static_cast<size_t>(p.n_points) * 3, 0.0), normal(p.n_points, 0.0);
   if (p.n_points > 0) {  // a piece without points (a PVTU's declaration) reads no state
-    for (const auto& [pair, slave_nodes] : multiplier_nodes(scene, t, u, lambda))
+    for (const auto& [pair, slave_nodes] : multiplier_nodes(*scene.problem, t, u, lambda))
       for (const auto& node : slave_nodes) {  // a slave vertex is node `vertex` (vertices come first)
         const int k = local[node.vertex];
         if (k < 0) continue;  // in another process's piece
@@ -133,13 +133,13 @@ void add_point_data(Piece& p, const scene::Scene& scene, fem::StateView u, const
 }
 
 // Cauchy stress and von Mises at the centroids, body id, and a piece's process number.
-void add_cell_data(Piece& p, const scene::Scene& scene, fem::StateView u, const std::vector<int>& cells, int process) {
-  std::vector<double> stress = fem::cell_cauchy_stress(*scene.space, scene.problem.cell_material, u, &cells);
+void add_cell_data(Piece& p, const scene::SceneView& scene, fem::StateView u, const std::vector<int>& cells, int process) {
+  std::vector<double> stress = fem::cell_cauchy_stress(*scene.space, scene.problem->cell_material, u, &cells);
   std::vector<double> mises(cells.size());
   std::vector<std::int32_t> body(cells.size());
   for (size_t k = 0; k < cells.size(); ++k) {
     mises[k] = von_mises(&stress[k * 9]);
-    body[k] = scene.body_of_cell[cells[k]];
+    body[k] = (*scene.body_of_cell)[cells[k]];
   }
   p.cell_data.push_back({"cauchy_stress", 9, std::move(stress), 9, 10});
   p.cell_data.push_back({"von_mises", 1, std::move(mises), 1, 10});
@@ -147,7 +147,7 @@ void add_cell_data(Piece& p, const scene::Scene& scene, fem::StateView u, const 
   if (process >= 0) p.cell_data.push_back({"process", 1, std::vector<std::int32_t>(cells.size(), process)});
 }
 
-Piece build_piece(const scene::Scene& scene, fem::StateView u, const std::vector<double>& lambda, double t,
+Piece build_piece(const scene::SceneView& scene, fem::StateView u, const std::vector<double>& lambda, double t,
                   const std::vector<int>& cells, int process) {
   const fem::FieldSpace& space = *scene.space;
   const int d = space.dim(), npc = space.nodes_per_cell();
@@ -215,13 +215,13 @@ void write_vtu(const std::string& path, const scene::Scene& scene, fem::StateVie
               scene.output.vtu_format == scene::VtuFormat::Binary);
 }
 
-void write_vtu_piece(const std::string& path, const scene::Scene& scene, fem::StateView u,
+void write_vtu_piece(const std::string& path, const scene::SceneView& scene, fem::StateView u,
                      const std::vector<double>& lambda, double t, const std::vector<int>& cells, int process) {
   write_piece(path, build_piece(scene, u, lambda, t, cells, process),
-              scene.output.vtu_format == scene::VtuFormat::Binary);
+              scene.scene->output.vtu_format == scene::VtuFormat::Binary);
 }
 
-void write_pvtu(const std::string& path, const scene::Scene& scene, const std::vector<double>& lambda,
+void write_pvtu(const std::string& path, const scene::SceneView& scene, const std::vector<double>& lambda,
                 const std::vector<std::string>& piece_files) {
   const Piece declared = build_piece(scene, {}, lambda, 0, {}, 0);  // the pieces' arrays, without data
   const auto declare = [](const DataArray& a) {

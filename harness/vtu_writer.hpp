@@ -9,6 +9,7 @@
 
 #include "fem/app_view.hpp"
 #include "scene/scene.hpp"
+#include "scene/scene_view.hpp"
 
 namespace stiction::harness {
 
@@ -21,14 +22,14 @@ double von_mises(const double* sigma);
 // 1 stick, 2 slip; -1 at every point that carries no multiplier).
 void write_vtu(const std::string& path, const scene::Scene& scene, fem::StateView u,
                const std::vector<double>& lambda = {}, double t = 0);
-// The same for the given cells only (one process's), with the nodes they use and a cell
-// array "process" holding `process`. u need hold only the nodes of these cells and, with
+// The same for the given cells only (one process's) of the scene or of this process's part
+// of it, with the nodes they use and a cell array "process" holding `process`. u need hold only the nodes of these cells and, with
 // contact, of the contact surfaces (a process's ghosted storage).
-void write_vtu_piece(const std::string& path, const scene::Scene& scene, fem::StateView u,
+void write_vtu_piece(const std::string& path, const scene::SceneView& scene, fem::StateView u,
                      const std::vector<double>& lambda, double t, const std::vector<int>& cells, int process);
 // The PVTU that joins the pieces (file names relative to it) written by write_vtu_piece
 // for the same state (lambda: whether they carry the contact arrays).
-void write_pvtu(const std::string& path, const scene::Scene& scene, const std::vector<double>& lambda,
+void write_pvtu(const std::string& path, const scene::SceneView& scene, const std::vector<double>& lambda,
                 const std::vector<std::string>& piece_files);
 
 class PvdCollection {

@@ -9,10 +9,10 @@
 // facets and new vertices get the ids mesh::refine() gives them on the whole mesh, so a mesh
 // refined in parts is the refined whole mesh divided (bit for bit, coordinates and curved
 // edges included). A level's numbering thus does not depend on the process count, and a mesh
-// need only be whole at the coarse level that is partitioned. (A scene without contact can
-// be solved on parts: scene::divide_scene. Runs with contact and `stiction solve` still
-// build their spaces and contact surfaces on the whole mesh, with the cells split by
-// fem::MeshPartition.)
+// need only be whole at the coarse level that is partitioned. (A scene without contact is
+// solved on parts: scene::divide_scene, which `stiction solve` uses on several processes.
+// Runs with contact still build their spaces and contact surfaces on the whole mesh, with
+// the cells split by fem::MeshPartition.)
 #include <vector>
 
 #include <mpi.h>

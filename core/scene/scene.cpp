@@ -592,7 +592,8 @@ std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& o
   s.name = get_string(meta, S.scene_meta, "name");
   if (s.name.empty()) s.name = std::filesystem::path(origin).stem().string();
   s.description = get_string(meta, S.scene_meta, "description");
-  s.level = level >= 0 ? level : static_cast<int>(get_int(meta, S.scene_meta, "level"));
+  s.file_level = static_cast<int>(get_int(meta, S.scene_meta, "level"));
+  s.level = level >= 0 ? level : s.file_level;
   if (s.level < 0 || s.level > 4) throw Error(fmt::format("{}: mesh level {} outside 0..4", origin, s.level));
 
   std::map<std::string, size_t> material_index;
@@ -613,6 +614,7 @@ std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& o
     bool refined = false;
     mesh::Mesh m = make_body_mesh(sub(*b, "mesh"), origin, base_dir, name, s.level, &refined);
     if (!refined) m = mesh::refine(m, s.level);
+    s.levels_by_refinement = s.levels_by_refinement && !refined;
     mesh::check_validity(m, fmt::format("{}: body '{}' mesh", origin, name));
     mesh::append(s.mesh, m, name);
     s.body_of_cell.insert(s.body_of_cell.end(), m.n_cells(), static_cast<int>(s.body_names.size()));

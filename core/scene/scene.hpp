@@ -32,7 +32,12 @@ struct Scene {
   std::string description;
   std::string origin;  // file path or "built-in:<name>"
   int level = 0;
+  int file_level = 0;  // the level the scene file asks for ([scene] level), which --level overrides
   mesh::Mesh mesh;     // all bodies, merged, at `level`
+  // Whether every level is the uniform refinement of level 0 (false when a body's generator
+  // re-meshes each level: curved Gmsh geometry, spheres, tubes), so that level 0 refined in
+  // mesh parts is the scene's own finer level (scene::divide_scene).
+  bool levels_by_refinement = true;
   std::vector<std::string> body_names;
   std::vector<int> body_of_cell;
   std::vector<std::unique_ptr<materials::Material>> materials;

@@ -23,9 +23,8 @@ std::unique_ptr<ScenePart> divide_scene(MPI_Comm comm, const Scene& scene, int l
 
   // A vertex carries a pressure when a cell of a mixed law holds it (as the scene decides).
   std::vector<char> has_pressure;
-  const auto ancestor_law = [&](int c) {
-    return scene.problem.cell_material[static_cast<size_t>(part.cell_ids[c] / children)];
-  };
+  const auto ancestor = [&](int c) { return static_cast<size_t>(part.cell_ids[c] / children); };
+  const auto ancestor_law = [&](int c) { return scene.problem.cell_material[ancestor(c)]; };
   if (whole.has_pressure()) {
     has_pressure.assign(part.mesh.n_vertices(), 0);
     for (int c = 0; c < part.mesh.n_cells(); ++c)
@@ -41,7 +40,10 @@ std::unique_ptr<ScenePart> divide_scene(MPI_Comm comm, const Scene& scene, int l
   p = scene.problem;
   p.space = out->space.get();
   p.cell_material.clear();
-  for (int c = 0; c < part.mesh.n_cells(); ++c) p.cell_material.push_back(ancestor_law(c));
+  for (int c = 0; c < part.mesh.n_cells(); ++c) {
+    p.cell_material.push_back(ancestor_law(c));
+    out->body_of_cell.push_back(scene.body_of_cell[ancestor(c)]);
+  }
   return out;
 }
 

@@ -31,6 +31,7 @@ struct ScenePart {
   std::unique_ptr<fem::FieldSpace> space;  // over part.mesh
   fem::PartOwnership ownership;            // of space's unknowns
   nonlinear::ElasticityProblem problem;    // over space; its laws are the scene's
+  std::vector<int> body_of_cell;           // per part cell (Scene::body_of_cell)
   std::string partitioner;                 // what split the cells (empty on one process)
 
   ScenePart() = default;

@@ -117,6 +117,34 @@ bool is_force_column(const std::string& name) {
   return false;
 }
 
+// The steps.csv of two runs of the same scene: the same rows and Newton path (step, cut,
+// converged, reason, Newton iterations in every row), every force column to 1e-8 of the
+// largest force. Returns the total Krylov iterations of each run.
+std::pair<double, double> expect_same_newton_path(const fs::path& one, const fs::path& other) {
+  const auto a = read_rows(one / "steps.csv"), b = read_rows(other / "steps.csv");
+  EXPECT_FALSE(a.empty());
+  EXPECT_EQ(a.size(), b.size());
+  if (a.empty() || a.size() != b.size()) return {0, 0};
+  double force_scale = 0;
+  for (const auto& row : a) {
+    for (const auto& [name, value] : row)
+      if (is_force_column(name)) force_scale = std::max(force_scale, std::abs(std::stod(value)));
+  }
+  EXPECT_GT(force_scale, 0) << "no force column to compare";
+  double krylov_a = 0, krylov_b = 0;
+  for (size_t k = 0; k < a.size(); ++k) {
+    for (const char* same : {"step", "cut", "converged", "reason", "newton_iterations"})
+      EXPECT_EQ(a[k].at(same), b[k].at(same)) << same << " of row " << k;
+    for (const auto& [name, value] : a[k]) {
+      if (!is_force_column(name)) continue;
+      EXPECT_NEAR(std::stod(value), std::stod(b[k].at(name)), 1e-8 * force_scale) << name << " of row " << k;
+    }
+    krylov_a += std::stod(a[k].at("krylov_iterations"));
+    krylov_b += std::stod(b[k].at("krylov_iterations"));
+  }
+  return {krylov_a, krylov_b};
+}
+
 struct ParallelCase {
   const char* scene;
   const char* backend;
@@ -141,26 +169,7 @@ TEST_P(SolveOnTwoProcesses, FollowsTheOneProcessNewtonPath) {
   ASSERT_EQ(one.exit_code, 0) << one.err;
   ASSERT_EQ(two.exit_code, 0) << two.err;
   EXPECT_TRUE(two.error_lines().empty()) << two.err;
-  const auto a = read_rows(dir_ / "one" / "steps.csv"), b = read_rows(dir_ / "two" / "steps.csv");
-  ASSERT_FALSE(a.empty());
-  ASSERT_EQ(a.size(), b.size());
-  double force_scale = 0;
-  for (const auto& row : a) {
-    for (const auto& [name, value] : row)
-      if (is_force_column(name)) force_scale = std::max(force_scale, std::abs(std::stod(value)));
-  }
-  ASSERT_GT(force_scale, 0) << "no force column to compare";
-  double krylov_a = 0, krylov_b = 0;
-  for (size_t k = 0; k < a.size(); ++k) {
-    for (const char* same : {"step", "cut", "converged", "reason", "newton_iterations"})
-      EXPECT_EQ(a[k].at(same), b[k].at(same)) << same << " of row " << k;
-    for (const auto& [name, value] : a[k]) {
-      if (!is_force_column(name)) continue;
-      EXPECT_NEAR(std::stod(value), std::stod(b[k].at(name)), 1e-8 * force_scale) << name << " of row " << k;
-    }
-    krylov_a += std::stod(a[k].at("krylov_iterations"));
-    krylov_b += std::stod(b[k].at("krylov_iterations"));
-  }
+  const auto [krylov_a, krylov_b] = expect_same_newton_path(dir_ / "one", dir_ / "two");
   EXPECT_LE(std::abs(krylov_b - krylov_a), c.krylov_band * krylov_a) << krylov_a << " -> " << krylov_b;
   const std::string metrics = stiction::test::read_file(dir_ / "two.toml");
   EXPECT_NE(metrics.find("processes = 2"), std::string::npos) << metrics;
@@ -234,22 +243,11 @@ TEST_F(StictionUnderMpirun, BenchRanksAxisRefusesAOneProcessBackend) {
   EXPECT_FALSE(fs::exists(dir_ / "sweep" / "runs.csv")) << "the refused sweep started runs";
 }
 
-// On two processes each process writes its own cells as a VTU piece, from the state it holds
-// (its owned unknowns and ghosts), and rank 0 a PVTU joining them: together the pieces hold
-// every cell once, and at every point and cell the one-process solution (the Newton path is
-// the same; values to 1e-8 of the largest). Rank 0 writes contact.csv from the contact
-// surfaces it holds: the one-process table.
-TEST_F(StictionUnderMpirun, EachProcessWritesItsPieceOfTheSolutionAndRankZeroJoinsThem) {
-  const fs::path one = dir_ / "one", two = dir_ / "two";
-  const std::vector<std::string> common{"solve", "sliding-block-2d", "--quick", "--quiet", "--out"};
-  auto with_out = [&](const fs::path& out) {
-    std::vector<std::string> a = common;
-    a.push_back(out.string());
-    return a;
-  };
-  const CliRun r1 = run(1, with_out(one)), r2 = run(2, with_out(two));
-  ASSERT_EQ(r1.exit_code, 0) << r1.err;
-  ASSERT_EQ(r2.exit_code, 0) << r2.err;
+// The two-process output in `two` of the run whose one-process output is in `one`: the PVD
+// names step-001.pvtu, whose pieces (one per process, each its own cells, from the state it
+// holds) together hold every cell once and, at every point and cell, the one-process
+// solution of step-001.vtu (values to 1e-8 of the largest; with contact, the contact state).
+void expect_pieces_join_into_the_whole(const fs::path& one, const fs::path& two, bool contact) {
   EXPECT_FALSE(fs::exists(two / "step-001.vtu")) << "two processes write pieces, not the whole";
   std::ifstream pvd(two / "solution.pvd");
   const std::string collection((std::istreambuf_iterator<char>(pvd)), std::istreambuf_iterator<char>());
@@ -261,7 +259,6 @@ TEST_F(StictionUnderMpirun, EachProcessWritesItsPieceOfTheSolutionAndRankZeroJoi
   const auto whole = stiction::test::read_vtu((one / "step-001.vtu").string());
   const auto& points = whole.array("Points").values;
   const auto& u = whole.array("displacement").values;
-  const auto& state = whole.array("contact_state").values;
   std::map<std::pair<long long, long long>, size_t> point_at;  // 2D: (x, y) to 1e-9
   for (size_t k = 0; k + 2 < points.size(); k += 3)
     point_at[{std::llround(points[k] * 1e9), std::llround(points[k + 1] * 1e9)}] = k / 3;
@@ -311,12 +308,13 @@ TEST_F(StictionUnderMpirun, EachProcessWritesItsPieceOfTheSolutionAndRankZeroJoi
     for (double p : piece.array("process").values) ASSERT_EQ(p, rank) << name;
     const auto& x = piece.array("Points").values;
     const auto& pu = piece.array("displacement").values;
-    const auto& ps = piece.array("contact_state").values;
     for (size_t k = 0; k + 2 < x.size(); k += 3) {
       const auto at = point_at.find({std::llround(x[k] * 1e9), std::llround(x[k + 1] * 1e9)});
       ASSERT_NE(at, point_at.end()) << name << ": point " << k / 3 << " is not a point of the whole mesh";
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(pu[k + c], u[at->second * 3 + c], 1e-8 * u_max) << name << " point " << k / 3;
-      EXPECT_EQ(ps[k / 3], state[at->second]) << name << " point " << k / 3;
+      if (contact)
+        EXPECT_EQ(piece.array("contact_state").values[k / 3], whole.array("contact_state").values[at->second])
+            << name << " point " << k / 3;
     }
     const auto piece_centroids = centroids(piece);
     const auto& piece_mises = piece.array("von_mises").values;
@@ -327,6 +325,23 @@ TEST_F(StictionUnderMpirun, EachProcessWritesItsPieceOfTheSolutionAndRankZeroJoi
     }
   }
   EXPECT_EQ(cells, std::stoi(whole.piece.at("NumberOfCells"))) << "the pieces hold every cell once";
+}
+
+// On two processes each process writes its own cells as a VTU piece, from the state it holds
+// (its owned unknowns and ghosts), and rank 0 a PVTU joining them (the Newton path is the
+// same). Rank 0 writes contact.csv from the contact surfaces it holds: the one-process table.
+TEST_F(StictionUnderMpirun, EachProcessWritesItsPieceOfTheSolutionAndRankZeroJoinsThem) {
+  const fs::path one = dir_ / "one", two = dir_ / "two";
+  const std::vector<std::string> common{"solve", "sliding-block-2d", "--quick", "--quiet", "--out"};
+  auto with_out = [&](const fs::path& out) {
+    std::vector<std::string> a = common;
+    a.push_back(out.string());
+    return a;
+  };
+  const CliRun r1 = run(1, with_out(one)), r2 = run(2, with_out(two));
+  ASSERT_EQ(r1.exit_code, 0) << r1.err;
+  ASSERT_EQ(r2.exit_code, 0) << r2.err;
+  expect_pieces_join_into_the_whole(one, two, true);
 
   const auto contact_one = stiction::harness::read_csv((one / "contact.csv").string());
   const auto contact_two = stiction::harness::read_csv((two / "contact.csv").string());
@@ -342,6 +357,40 @@ TEST_F(StictionUnderMpirun, EachProcessWritesItsPieceOfTheSolutionAndRankZeroJoi
     EXPECT_NEAR(std::stod(a.at("lambda_n")), std::stod(b.at("lambda_n")), 1e-8 * lambda_max) << "row " << k;
     EXPECT_NEAR(std::stod(a.at("x")), std::stod(b.at("x")), 1e-9) << "row " << k;
   }
+}
+
+// Without contact each process holds only its part of the mesh, with the space and Newton
+// state over it. cook-membrane-2d's levels are uniform refinements of level 0, so level 0 is
+// divided and the parts refined: level 1 on two processes ends where the whole level-1 mesh
+// on one process does (the same Newton iterations, forces to 1e-8), and the VTU pieces join
+// into its solution. With --whole-mesh every process holds the whole mesh (the path runs
+// with contact take), to the same result.
+TEST_F(StictionUnderMpirun, SceneWithoutContactRunsOnMeshPartsRefinedInParts) {
+  const fs::path one = dir_ / "one", parts = dir_ / "parts", whole = dir_ / "whole";
+  auto args = [&](const fs::path& out, bool whole_mesh) {
+    std::vector<std::string> a{"solve", "cook-membrane-2d", "--level", "1", "--quick", "--quiet", "--out", out.string()};
+    if (whole_mesh) a.insert(a.end(), {"--whole-mesh", "--no-vtu"});
+    return a;
+  };
+  const CliRun r1 = run(1, args(one, false)), r2 = run(2, args(parts, false)), r3 = run(2, args(whole, true));
+  ASSERT_EQ(r1.exit_code, 0) << r1.err;
+  ASSERT_EQ(r2.exit_code, 0) << r2.err;
+  ASSERT_EQ(r3.exit_code, 0) << r3.err;
+  const std::string in_parts = stiction::test::read_file(parts / "steps.csv");
+  EXPECT_NE(in_parts.find("at level 0, each part then refined to level 1 where it is; each holds its part of the mesh"),
+            std::string::npos)
+      << in_parts.substr(0, 2000);
+  EXPECT_NE(in_parts.find("# mesh: "), std::string::npos);
+  const std::string one_header = stiction::test::read_file(one / "steps.csv");
+  const auto mesh_line = [](const std::string& text) {
+    const size_t at = text.find("# mesh: ");
+    return at == std::string::npos ? std::string() : text.substr(at, text.find('\n', at) - at);
+  };
+  EXPECT_EQ(mesh_line(in_parts), mesh_line(one_header)) << "the header counts the whole mesh and space";
+  EXPECT_NE(stiction::test::read_file(whole / "steps.csv").find("the mesh whole on each"), std::string::npos);
+  expect_same_newton_path(one, parts);
+  expect_same_newton_path(one, whole);
+  expect_pieces_join_into_the_whole(one, parts, false);
 }
 
 // A checkpoint written on two processes holds the whole state (gathered on rank 0), in the

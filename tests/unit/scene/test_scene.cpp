@@ -236,6 +236,19 @@ TEST(Scene, SchemaDocumentsEveryKey) {
 namespace stiction {
 namespace {
 
+// A scene knows whether its levels are uniform refinements of level 0 (what dividing level 0
+// and refining the parts relies on): not when a body is re-meshed per level (curved polygon
+// sides, spheres, tubes). It keeps the level its file asks for beside the one built.
+TEST(Scene, KnowsWhetherItsLevelsAreRefinementsOfLevelZero) {
+  EXPECT_TRUE(harness::open_scene("cook-membrane-2d", 0, {})->levels_by_refinement);
+  EXPECT_TRUE(harness::open_scene("block-compression", 0, {})->levels_by_refinement);
+  EXPECT_FALSE(harness::open_scene("hertz-cylinder-2d", 0, {})->levels_by_refinement);  // arc sides
+  EXPECT_FALSE(harness::open_scene("hertz-spheres-3d", 0, {})->levels_by_refinement);   // sphere octants
+  const auto s = scene::build_scene(std::string("[scene]\nlevel = 1\n") + test::minimal_bar_scene(), "test.toml", ".", 0);
+  EXPECT_EQ(s->file_level, 1);
+  EXPECT_EQ(s->level, 0);
+}
+
 // On one process a scene's part is the whole scene (refined in parts: the whole finer
 // level), and solving on it is the whole-mesh run, bit for bit.
 TEST(ScenePart, OnOneProcessSolvesAsTheWholeScene) {
