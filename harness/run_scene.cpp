@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <utility>
+
 #include "builtin_scenes.hpp"
 #include "common/error.hpp"
 
@@ -35,12 +37,12 @@ RunScene open_run_scene(MPI_Comm comm, const std::string& name, int level, const
   return run;
 }
 
-std::unique_ptr<nonlinear::QuasiStaticSolver> make_quasi_static_solver(MPI_Comm comm, const RunScene& run,
+std::unique_ptr<nonlinear::QuasiStaticSolver> make_quasi_static_solver(MPI_Comm comm, RunScene& run,
                                                                        nonlinear::LinearSolver& linear) {
   const scene::Scene& s = *run.scene;
   if (!run.part) return std::make_unique<nonlinear::QuasiStaticSolver>(comm, s.problem, s.newton, linear);
-  return std::make_unique<nonlinear::QuasiStaticSolver>(comm, run.part->problem, run.part->part, run.part->ownership,
-                                                        s.newton, linear);
+  return std::make_unique<nonlinear::QuasiStaticSolver>(comm, run.part->problem, run.part->part,
+                                                        std::move(run.part->ownership), s.newton, linear);
 }
 
 }  // namespace stiction::harness

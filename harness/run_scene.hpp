@@ -34,7 +34,8 @@ struct RunScene {
 RunScene open_run_scene(MPI_Comm comm, const std::string& name, int level, const std::vector<std::string>& overrides,
                         bool whole_mesh);
 // The Newton solver over what this process holds of the run's scene (the scene's settings).
-std::unique_ptr<nonlinear::QuasiStaticSolver> make_quasi_static_solver(MPI_Comm comm, const RunScene& run,
+// The part's ownership moves into the solver's layout (run.part->ownership is left empty).
+std::unique_ptr<nonlinear::QuasiStaticSolver> make_quasi_static_solver(MPI_Comm comm, RunScene& run,
                                                                        nonlinear::LinearSolver& linear);
 
 }  // namespace stiction::harness

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <utility>
 
 #include "common/error.hpp"
 
@@ -48,9 +49,9 @@ DofLayout::DofLayout(MPI_Comm comm, const FieldSpace& space, const MeshPartition
   }
 }
 
-DofLayout::DofLayout(MPI_Comm comm, const mesh::LocalMesh& part, const FieldSpace& space, const PartOwnership& ownership)
-    : comm_(comm), first_owned_(ownership.first_owned), owner_(ownership.owner), global_(ownership.petsc),
-      app_(ownership.app) {
+DofLayout::DofLayout(MPI_Comm comm, const mesh::LocalMesh& part, const FieldSpace& space, PartOwnership ownership)
+    : comm_(comm), first_owned_(ownership.first_owned), owner_(std::move(ownership.owner)),
+      global_(std::move(ownership.petsc)), app_(std::move(ownership.app)) {
   MPI_Comm_rank(comm, &rank_);
   MPI_Comm_size(comm, &size_);
   const PetscInt n_owned = ownership.n_owned;

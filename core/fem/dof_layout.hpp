@@ -38,8 +38,9 @@ public:
   DofLayout(MPI_Comm comm, const FieldSpace& space, const MeshPartition& partition,
             const std::vector<int>& extra_vertices);
   // Over a mesh part: space is the part's (part.mesh), ownership its unknowns' owners and
-  // indices (fem::own_part_unknowns). No extra unknowns yet. Collective.
-  DofLayout(MPI_Comm comm, const mesh::LocalMesh& part, const FieldSpace& space, const PartOwnership& ownership);
+  // indices (fem::own_part_unknowns; the layout keeps them, so pass it moved when it is not
+  // needed afterwards). No extra unknowns yet. Collective.
+  DofLayout(MPI_Comm comm, const mesh::LocalMesh& part, const FieldSpace& space, PartOwnership ownership);
 
   MPI_Comm comm() const { return comm_; }
   bool identity() const { return size_ == 1; }

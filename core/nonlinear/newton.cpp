@@ -92,7 +92,7 @@ QuasiStaticSolver::QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& pro
     : QuasiStaticSolver(comm, problem, nullptr, nullptr, settings, linear) {}
 
 QuasiStaticSolver::QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& problem, const mesh::LocalMesh& part,
-                                     const fem::PartOwnership& ownership, const NewtonSettings& settings,
+                                     fem::PartOwnership ownership, const NewtonSettings& settings,
                                      LinearSolver& linear)
     : QuasiStaticSolver(comm, problem, &part, &ownership, settings, linear) {}
 
@@ -111,7 +111,7 @@ fem::MeshPartition partition_of_part(MPI_Comm comm, const mesh::LocalMesh& part)
 }  // namespace
 
 QuasiStaticSolver::QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& problem, const mesh::LocalMesh* part,
-                                     const fem::PartOwnership* ownership, const NewtonSettings& settings,
+                                     fem::PartOwnership* ownership, const NewtonSettings& settings,
                                      LinearSolver& linear)
     : problem_(checked(problem)),
       settings_(settings),
@@ -120,7 +120,7 @@ QuasiStaticSolver::QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& pro
       constraints_(problem.constraints),
       partition_(part ? partition_of_part(comm, *part) : fem::partition_cells(comm, problem.space->mesh())),
       part_(part),
-      layout_(part ? fem::DofLayout(comm, *part, *problem.space, *ownership)
+      layout_(part ? fem::DofLayout(comm, *part, *problem.space, std::move(*ownership))
                    : fem::DofLayout(comm, *problem.space, partition_, constraints_.multiplier_vertices())),
       builder_(layout_, problem, constraints_.n_multipliers()),
       pattern_(std::make_shared<fem::GhostPattern>(layout_, unknowns_read())),

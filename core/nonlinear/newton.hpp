@@ -156,10 +156,11 @@ public:
   QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& problem, const NewtonSettings& settings,
                     LinearSolver& linear);
   // Over a mesh part (scene::divide_scene): problem.space is the part's space, ownership its
-  // unknowns' owners and indices; no contact yet. Outputs that are whole (displacement(),
+  // unknowns' owners and indices (kept by the layout: pass it moved when done with it); no
+  // contact yet. Outputs that are whole (displacement(),
   // state()) are in the whole space's app order.
   QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& problem, const mesh::LocalMesh& part,
-                    const fem::PartOwnership& ownership, const NewtonSettings& settings, LinearSolver& linear);
+                    fem::PartOwnership ownership, const NewtonSettings& settings, LinearSolver& linear);
 
   // Newton for load step `step` in one increment, from the current state.
   StepResult solve_step(int step);
@@ -244,7 +245,7 @@ private:
   // The unknowns this process reads besides its own: the nodes of its row cells (assembly),
   // of its own cells (output) and of every constraint's surfaces (contact).
   QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& problem, const mesh::LocalMesh* part,
-                    const fem::PartOwnership* ownership, const NewtonSettings& settings, LinearSolver& linear);
+                    fem::PartOwnership* ownership, const NewtonSettings& settings, LinearSolver& linear);
   std::vector<PetscInt> unknowns_read() const;
   // The residual r(u) = f_int - f_ext at pseudo-time t (constrained rows included; on
   // several processes complete in the owned rows only), and the status over every process.
