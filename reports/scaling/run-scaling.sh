@@ -20,3 +20,6 @@ run --scenes block-strips --solvers schur-amg --levels 2 --ranks 2 --time-limit 
 python3 scripts/merge-sweep-runs.py reports/paper-tables reports/scaling/block-strips-L2 block-strips-L2-schur-amg
 $B report reports/scaling/block-strips-L2
 run --scenes block-strips --solvers schur-amg --levels 1 --ranks 1,2 --time-limit 2400 --out reports/scaling/block-strips-L1
+# 2026-12-05, binary of f09580b (stiction solve divides scenes without contact into mesh parts on
+# several processes; the ironing run on the other core stopped with SIGSTOP):
+run --scenes block-compression,mooney-rivlin-block --solvers schur-amg --levels 1,2 --ranks 1,2 --time-limit 2400 --out reports/scaling/parts-L1-L2
