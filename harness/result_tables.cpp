@@ -135,12 +135,12 @@ ContactTable::ContactTable(const std::string& path, const std::string& header_co
   out_.flush();
 }
 
-void ContactTable::add(const nonlinear::StepResult& r, const scene::Scene& s, fem::StateView u,
+void ContactTable::add(const nonlinear::StepResult& r, const scene::SceneView& s, fem::StateView u,
                        const std::vector<double>& lambda) {
-  for (const auto& [pair, nodes] : multiplier_nodes(s.problem, r.time, u, lambda))
+  for (const auto& [pair, nodes] : multiplier_nodes(*s.problem, r.time, u, lambda))
     for (size_t i = 0; i < nodes.size(); ++i) {
       const auto& n = nodes[i];
-      out_ << fmt::format("{},{:.10g},{},{},{}", r.step, r.time, pair, i, n.vertex);
+      out_ << fmt::format("{},{:.10g},{},{},{}", r.step, r.time, pair, i, s.whole_vertex(n.vertex));
       for (int k = 0; k < dim_; ++k) out_ << fmt::format(",{:.10e}", n.position[k]);
       out_ << fmt::format(",{:.6e}", n.gap);
       for (int k = 0; k < dim_; ++k) out_ << fmt::format(",{:.10e}", n.multiplier[k]);

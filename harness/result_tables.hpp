@@ -29,7 +29,8 @@ class ContactTable {
 public:
   ContactTable(const std::string& path, const std::string& header_comment, int dim, bool append = false);
   // u need hold the contact surfaces' unknowns only (any process's ghosted storage does).
-  void add(const nonlinear::StepResult& r, const scene::Scene& s, fem::StateView u, const std::vector<double>& lambda);
+  void add(const nonlinear::StepResult& r, const scene::SceneView& s, fem::StateView u,
+           const std::vector<double>& lambda);
 
 private:
   std::ofstream out_;

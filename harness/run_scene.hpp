@@ -1,11 +1,12 @@
 #pragma once
-// The scene a solve runs on, and what each process holds of it. On one process, or with
-// contact (not divided yet), or when asked (--whole-mesh), every process builds the whole
-// scene at the level asked. Otherwise each process holds only its part of the mesh and the
-// space and problem over it (scene::divide_scene); when the scene's levels are uniform
-// refinements of level 0, level 0 is divided and the parts refined where they are, so that
-// the finer mesh is never whole on any process (the same mesh as the whole level; its cells
-// are split as level 0's were).
+// The scene a solve runs on, and what each process holds of it. On one process, or when
+// asked (--whole-mesh), every process builds the whole scene at the level asked. Otherwise
+// each process holds only its part of the mesh and the space and problem over it
+// (scene::divide_scene; with contact, the contact surfaces whole besides); when the scene's
+// levels are uniform refinements of level 0 and it has no contact, level 0 is divided and
+// the parts refined where they are, so that the finer mesh is never whole on any process
+// (the same mesh as the whole level; its cells are split as level 0's were). A scene with
+// contact is built whole at its level and then divided.
 #include <memory>
 #include <optional>
 #include <string>

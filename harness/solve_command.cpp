@@ -28,15 +28,35 @@ namespace {
 
 // One line per changed contact state, on stderr: where the node is, its gap and multiplier,
 // so a cycling or wandering active set can be read per Newton iteration.
-void print_state_change(const nonlinear::QuasiStaticSolver::StateChange& c) {
+void print_state_change(const nonlinear::QuasiStaticSolver::StateChange& c, const scene::SceneView& view) {
   const auto& n = c.after;
   const auto state = [](char s) { return contact::to_string(static_cast<contact::NodeState>(s)); };
   const double lt = std::hypot(n.tangential[0], n.tangential[1], n.tangential[2]);
   fmt::print(stderr,
              "  step {} iteration {}: {} node {} (vertex {}) {} -> {}, gap {:.3e}, lambda_n {:.3e}, |lambda_t| {:.3e}, "
              "x ({:.6g}, {:.6g}, {:.6g})\n",
-             c.step, c.iteration, c.constraint, c.node, n.vertex, state(c.before), state(n.state), n.gap, n.normal, lt,
+             c.step, c.iteration, c.constraint, c.node, view.whole_vertex(n.vertex), state(c.before), state(n.state), n.gap, n.normal, lt,
              n.position[0], n.position[1], n.position[2]);
+}
+
+// The comment lines every table of the run starts with: provenance, scene, bodies, mesh and
+// unknowns (whole), solver and Newton settings.
+std::string describe_run(const SolveOptions& o, const RunInfo& info, const scene::SceneView& view,
+                         const std::string& krylov_rtol_origin) {
+  const scene::Scene& scene = *view.scene;
+  const nonlinear::NewtonSettings& newton = scene.newton;
+  std::string header = format_run_info(info, "# ");
+  header += fmt::format("# scene: {} ({}), level {}, basis {}\n", scene.name, scene.origin, view.level,
+                        fem::to_string(view.space->kind()));
+  for (size_t b = 0; b < scene.body_names.size(); ++b)
+    header += fmt::format("# body {}: {}\n", scene.body_names[b], scene.material_of_body[b]);
+  header += fmt::format("# mesh: {} vertices, {} cells; unknowns: u_l {}, u_q {}, total {}\n", view.n_vertices,
+                        view.n_cells, view.n_linear, view.n_quadratic, view.n_dofs());
+  header += fmt::format("# solver: {}; newton atol {:g}, rtol {:g}, max_iterations {}, forcing {}, krylov rtol {}\n",
+                        o.solver, newton.atol, newton.rtol, newton.max_iterations, nonlinear::to_string(newton.forcing),
+                        newton.krylov_rtol > 0 ? fmt::format("{:g} ({})", newton.krylov_rtol, krylov_rtol_origin)
+                                               : std::string("the backend's"));
+  return header;
 }
 
 // The header line of a run on several processes: how the cells were split and what each
@@ -45,11 +65,12 @@ std::string describe_processes(const RunScene& run, int processes, const std::st
   if (!run.part)
     return fmt::format("# MPI processes: {} (cells split by {}; the mesh whole on each, the Newton state held per "
                        "process)\n", processes, partitioner);
-  return fmt::format("# MPI processes: {} (cells split by {}{}; each holds its part of the mesh, with the space and "
-                     "the Newton state over it)\n", processes, run.part->partitioner,
+  return fmt::format("# MPI processes: {} (cells split by {}{}; each holds its part of the mesh{}, with the space "
+                     "and the Newton state over it)\n", processes, run.part->partitioner,
                      run.refined_in_parts > 0
                          ? fmt::format(" at level 0, each part then refined to level {} where it is", run.level())
-                         : std::string());
+                         : std::string(),
+                     run.part->contacts.empty() ? "" : " and the contact surfaces whole");
 }
 
 }  // namespace
@@ -93,19 +114,7 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   if (writer) std::filesystem::create_directories(out_dir, ec);
   if (ec) throw Error(fmt::format("cannot create output directory '{}': {}", out_dir, ec.message()));
 
-  std::string header = format_run_info(info, "# ");
-  header += fmt::format("# scene: {} ({}), level {}, basis {}\n", scene->name, scene->origin, run.level(),
-                        fem::to_string(view.space->kind()));
-  for (size_t b = 0; b < scene->body_names.size(); ++b)
-    header += fmt::format("# body {}: {}\n", scene->body_names[b], scene->material_of_body[b]);
-  header += fmt::format("# mesh: {} vertices, {} cells; unknowns: u_l {}, u_q {}, total {}\n", view.n_vertices,
-                        view.n_cells, view.n_linear, view.n_quadratic, view.n_dofs());
-  header += fmt::format("# solver: {}; newton atol {:g}, rtol {:g}, max_iterations {}, forcing {}, krylov rtol {}\n",
-                        o.solver, scene->newton.atol, scene->newton.rtol, scene->newton.max_iterations,
-                        nonlinear::to_string(scene->newton.forcing),
-                        scene->newton.krylov_rtol > 0
-                            ? fmt::format("{:g} ({})", scene->newton.krylov_rtol, krylov_rtol_origin)
-                            : std::string("the backend's"));
+  std::string header = describe_run(o, info, view, krylov_rtol_origin);
   if (restart)
     header += fmt::format("# restarted from '{}' after load step {} (t = {:g})\n", o.restart_dir, resume.state.step,
                           resume.state.time);
@@ -140,7 +149,8 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
       record_system(o.record_dir, sys, du, stats, step, iteration, context);
     });
   }
-  if (o.trace_contact && writer) newton.set_state_change_observer(print_state_change);
+  if (o.trace_contact && writer) newton.set_state_change_observer(
+      [&view](const nonlinear::QuasiStaticSolver::StateChange& c) { print_state_change(c, view); });
   double until = o.until >= 0 ? o.until : std::numeric_limits<double>::infinity();
   if (o.quick) until = std::min(until, scene->quick_until);
   const int last_step = scene->problem.step_reaching(until);
@@ -189,7 +199,7 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
       if (writer)
         write_checkpoint(out_dir + "/checkpoint.bin",
                          {scene->name, run.level(), state, newton.linear_tally(), newton.cut_back()});
-      if (contact_table) contact_table->add(r, *scene, newton.held_displacement(), newton.multipliers());
+      if (contact_table) contact_table->add(r, view, newton.held_displacement(), newton.multipliers());
       if (scene->output.vtu && o.write_vtu) write_step_output(r);
     }
     if (verbose)

@@ -29,6 +29,9 @@ class RigidPlaneContact final : public ContactPair {
 public:
   RigidPlaneContact(std::string name, const fem::FieldSpace& space, int slave_tag, RigidPlane plane,
                     ContactSettings settings);
+  std::unique_ptr<nonlinear::MultiplierConstraint> over(const fem::FieldSpace& space) const override {
+    return std::make_unique<RigidPlaneContact>(name(), space, slave_tag_, plane_, settings_);
+  }
 
 private:
   void compute_kinematics(double t, fem::StateView u, const double* lambda, fem::ResidualView r_u,

@@ -75,6 +75,9 @@ public:
   std::vector<std::pair<std::string, int>> surfaces() const override {
     return {{"slave", slave_tag_}, {"master", master_tag_}};
   }
+  std::unique_ptr<nonlinear::MultiplierConstraint> over(const fem::FieldSpace& space) const override {
+    return std::make_unique<SurfaceContact>(name(), space, slave_tag_, master_tag_, settings_, search_radius_);
+  }
 
 private:
   void compute_kinematics(double t, fem::StateView u, const double* lambda, fem::ResidualView r_u,

@@ -39,7 +39,8 @@ public:
             const std::vector<int>& extra_vertices);
   // Over a mesh part: space is the part's (part.mesh), ownership its unknowns' owners and
   // indices (fem::own_part_unknowns; the layout keeps them, so pass it moved when it is not
-  // needed afterwards). No extra unknowns yet. Collective.
+  // needed afterwards), the extra unknowns (multipliers) among them after the space's dofs.
+  // Collective.
   DofLayout(MPI_Comm comm, const mesh::LocalMesh& part, const FieldSpace& space, PartOwnership ownership);
 
   MPI_Comm comm() const { return comm_; }

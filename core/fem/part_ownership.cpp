@@ -33,14 +33,15 @@ std::vector<int> node_owners(const mesh::LocalMesh& part, const FieldSpace& spac
 }  // namespace
 
 PartOwnership own_part_unknowns(MPI_Comm comm, const mesh::LocalMesh& part, const FieldSpace& space,
-                                const PartNumbering& numbering) {
+                                const PartNumbering& numbering, const std::vector<int>& extra_vertices) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   const int d = space.dim();
   const std::vector<int> owner = node_owners(part, space);
   PartOwnership o;
-  o.app.resize(space.n_dofs());
-  o.owner.assign(space.n_dofs(), -1);
+  const size_t n_held = static_cast<size_t>(space.n_dofs()) + extra_vertices.size();
+  o.app.resize(n_held);
+  o.owner.assign(n_held, -1);
   for (int node = 0; node < space.n_nodes(); ++node)
     for (int k = 0; k < d; ++k) {
       o.app[static_cast<size_t>(node) * d + k] = static_cast<PetscInt>(numbering.node[node]) * d + k;
@@ -53,6 +54,13 @@ PartOwnership own_part_unknowns(MPI_Comm comm, const mesh::LocalMesh& part, cons
       o.owner[space.pressure_dof(v)] = owner[v];
     }
 
+  // The extra unknowns follow the whole space's in app order, each owned by its vertex's
+  // owner, as fem::DofLayout orders them over the whole mesh.
+  const PetscInt extra_block = pressure_block + numbering.n_global_pressures;
+  for (size_t k = 0; k < extra_vertices.size(); ++k) {
+    o.app[static_cast<size_t>(space.n_dofs()) + k] = extra_block + static_cast<PetscInt>(k);
+    o.owner[static_cast<size_t>(space.n_dofs()) + k] = owner[extra_vertices[k]];
+  }
   // The owned unknowns in app order take this process's range of PETSc indices.
   std::vector<PetscInt> owned_app;
   for (size_t i = 0; i < o.app.size(); ++i)

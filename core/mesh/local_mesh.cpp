@@ -30,9 +30,17 @@ void sort_unique(std::vector<T>& v, Key key) {
 
 bool contains(const std::vector<int>& sorted, int x) { return std::binary_search(sorted.begin(), sorted.end(), x); }
 
-// The own cells (owner == rank), then those that share a vertex with them, each group in
-// ascending id (records sorted by id, without repeats).
-std::vector<const CellRecord*> own_cells_and_layer(const std::vector<CellRecord>& cells, int rank, int nvc) {
+// The own cells (owner == rank), then the ghosts: those that share a vertex with them and
+// those with a face among surface_keys (sorted facet keys), each group in ascending id
+// (records sorted by id, without repeats).
+std::vector<const CellRecord*> own_cells_and_layer(const std::vector<CellRecord>& cells, int rank, int nvc,
+                                                   const std::vector<std::array<int, 3>>& surface_keys) {
+  const auto on_surface = [&](const CellRecord& c) {
+    if (surface_keys.empty()) return false;
+    for (const auto& key : cell_facet_keys(c.v.data(), nvc - 1))
+      if (std::binary_search(surface_keys.begin(), surface_keys.end(), key)) return true;
+    return false;
+  };
   std::vector<int> own_vertices;
   for (const CellRecord& c : cells)
     if (c.owner == rank) own_vertices.insert(own_vertices.end(), c.v.begin(), c.v.begin() + nvc);
@@ -42,7 +50,8 @@ std::vector<const CellRecord*> own_cells_and_layer(const std::vector<CellRecord>
   for (const CellRecord& c : cells)
     if (c.owner == rank) kept.push_back(&c);
   for (const CellRecord& c : cells)
-    if (c.owner != rank && std::any_of(c.v.begin(), c.v.begin() + nvc, [&](int v) { return contains(own_vertices, v); }))
+    if (c.owner != rank &&
+        (std::any_of(c.v.begin(), c.v.begin() + nvc, [&](int v) { return contains(own_vertices, v); }) || on_surface(c)))
       kept.push_back(&c);
   return kept;
 }
@@ -111,13 +120,19 @@ int local_index(const std::vector<int>& sorted_ids, int id) {
   return static_cast<int>(it - sorted_ids.begin());
 }
 
-LocalMesh number_part(PartRecords& r, const Mesh& names, int rank) {
+LocalMesh number_part(PartRecords& r, const Mesh& names, int rank, const std::vector<int>& surface_tags) {
   LocalMesh part;
+  part.surface_tags = surface_tags;
+  std::vector<std::array<int, 3>> surface_keys;
+  for (const FacetRecord& f : r.facets)
+    if (std::find(surface_tags.begin(), surface_tags.end(), f.tag) != surface_tags.end())
+      surface_keys.push_back(facet_key(f.v.data(), names.dim));
+  std::sort(surface_keys.begin(), surface_keys.end());
   part.mesh.dim = names.dim;
   part.mesh.cell_tag_names = names.cell_tag_names;
   part.mesh.facet_tag_names = names.facet_tag_names;
   sort_unique(r.cells, [](const CellRecord& c) { return c.id; });
-  const auto cells = own_cells_and_layer(r.cells, rank, names.dim + 1);
+  const auto cells = own_cells_and_layer(r.cells, rank, names.dim + 1, surface_keys);
   part.n_own_cells = static_cast<int>(std::count_if(cells.begin(), cells.end(), [&](const CellRecord* c) { return c->owner == rank; }));
   add_vertices(part, cells, r.vertices);
   add_cells(part, cells);
@@ -145,7 +160,8 @@ std::vector<int> vertex_owners(const LocalMesh& part) {
   return owner;
 }
 
-LocalMesh local_part(const Mesh& whole, const std::vector<int>& cell_owner, int rank) {
+LocalMesh local_part(const Mesh& whole, const std::vector<int>& cell_owner, int rank,
+                     const std::vector<int>& surface_tags) {
   const int d = whole.dim, nvc = d + 1;
   if (static_cast<int>(cell_owner.size()) != whole.n_cells())
     throw Error(fmt::format("local_part: {} cell owners for {} cells", cell_owner.size(), whole.n_cells()), ErrorKind::Internal);
@@ -166,7 +182,7 @@ LocalMesh local_part(const Mesh& whole, const std::vector<int>& cell_owner, int 
     r.facets.push_back(rec);
   }
   for (const auto& [edge, x] : whole.edge_midpoints) r.midpoints.push_back({edge, x});
-  LocalMesh part = detail::number_part(r, whole, rank);
+  LocalMesh part = detail::number_part(r, whole, rank, surface_tags);
   part.n_global_vertices = whole.n_vertices();
   part.n_global_cells = whole.n_cells();
   part.n_global_facets = whole.n_facets();

@@ -9,10 +9,9 @@
 // facets and new vertices get the ids mesh::refine() gives them on the whole mesh, so a mesh
 // refined in parts is the refined whole mesh divided (bit for bit, coordinates and curved
 // edges included). A level's numbering thus does not depend on the process count, and a mesh
-// need only be whole at the coarse level that is partitioned. (A scene without contact is
-// solved on parts: scene::divide_scene, which `stiction solve` uses on several processes.
-// Runs with contact still build their spaces and contact surfaces on the whole mesh, with
-// the cells split by fem::MeshPartition.)
+// need only be whole at the coarse level that is partitioned. (Scenes are solved on parts:
+// scene::divide_scene, which `stiction solve` uses on several processes; with contact a
+// part also holds the contact surfaces whole, and is not refined yet.)
 #include <vector>
 
 #include <mpi.h>
@@ -29,6 +28,9 @@ struct LocalMesh {
   std::vector<int> vertex_ids, cell_ids, facet_ids;  // global id of each local entity
   std::vector<int> cell_owner;                       // owning process of each local cell
   int n_own_cells = 0;
+  // Facet tags whose facets the part holds whole, with the cells on them as ghosts (the
+  // contact surfaces, which every process evaluates whole).
+  std::vector<int> surface_tags;
   int n_global_vertices = 0, n_global_cells = 0, n_global_facets = 0;
 };
 
@@ -46,11 +48,16 @@ struct GlobalEdges {
 };
 GlobalEdges global_edge_ids(MPI_Comm comm, const LocalMesh& part, const EdgeTopology& edges);
 
-// Process `rank`'s part of `whole`, whose cell c belongs to process cell_owner[c].
-LocalMesh local_part(const Mesh& whole, const std::vector<int>& cell_owner, int rank);
+// Process `rank`'s part of `whole`, whose cell c belongs to process cell_owner[c]; with
+// surface_tags, also every cell with a facet of those tags, so that the part holds those
+// surfaces whole (their vertices away from the own cells have no star in the part: their
+// owner is -1 in vertex_owners).
+LocalMesh local_part(const Mesh& whole, const std::vector<int>& cell_owner, int rank,
+                     const std::vector<int>& surface_tags = {});
 
 // One uniform refinement of every process's part (collective over comm): the children of a
-// cell stay with its owner.
+// cell stay with its owner. Parts that hold surfaces whole (surface_tags) are refused: their
+// surface cells' children are not sent yet.
 LocalMesh refine_parts(MPI_Comm comm, const LocalMesh& part);
 
 }  // namespace stiction::mesh

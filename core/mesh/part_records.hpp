@@ -33,10 +33,11 @@ struct PartRecords {
   std::vector<MidpointRecord> midpoints;
 };
 
-// Process `rank`'s part out of records that hold at least its own cells, their vertex layer
-// and everything on those cells: the records of other cells are dropped. Tag names and the
-// dimension come from `names`; the global counts are left to the caller.
-LocalMesh number_part(PartRecords& r, const Mesh& names, int rank);
+// Process `rank`'s part out of records that hold at least its own cells, their vertex layer,
+// the cells on the facets tagged surface_tags and everything on those cells: the records of
+// other cells are dropped. Tag names and the dimension come from `names`; the global counts
+// are left to the caller.
+LocalMesh number_part(PartRecords& r, const Mesh& names, int rank, const std::vector<int>& surface_tags = {});
 
 // The position of a global id in the part's ascending ids (an internal error if absent).
 int local_index(const std::vector<int>& sorted_ids, int id);

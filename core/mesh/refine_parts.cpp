@@ -5,6 +5,7 @@
 #include <set>
 
 #include "common/all_to_all.hpp"
+#include "common/error.hpp"
 #include "mesh/part_records.hpp"
 
 namespace stiction::mesh {
@@ -150,6 +151,8 @@ std::vector<std::vector<int>> facets_of_own_cells(const LocalMesh& part) {
 }  // namespace
 
 LocalMesh refine_parts(MPI_Comm comm, const LocalMesh& part) {
+  if (!part.surface_tags.empty())
+    throw Error("refine_parts: a part that holds surfaces whole cannot be refined yet", ErrorKind::Internal);
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);

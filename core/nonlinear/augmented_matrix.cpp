@@ -138,20 +138,29 @@ void append_union(PetscInt an, ColumnOfA a_column, const PetscScalar* a_values, 
   }
 }
 
-// The entries of e whose rows this rank owns: its own in the order computed, then those the
-// other ranks computed for its rows, by sending rank (a fixed order: the sums of duplicates
-// are the same on every run).
+// The entries of e (in the layout's local index) whose rows this rank owns, in PETSc's
+// indices: its own in the order computed, then those the other ranks computed for its rows,
+// by sending rank (a fixed order: the sums of duplicates are the same on every run). The
+// entries travel in PETSc's indices and find their owner by its range: a process's local
+// index means nothing to another over mesh parts, and a part may compute a row whose owner
+// it cannot tell (a contact surface node away from its own cells).
 SparseEntries entries_of_owned_rows(const fem::DofLayout& layout, const SparseEntries& e) {
   const MPI_Comm comm = layout.comm();
   int size = 1, rank = 0;
   MPI_Comm_size(comm, &size);
   MPI_Comm_rank(comm, &rank);
+  std::vector<PetscInt> first(static_cast<size_t>(size) + 1, layout.n_total());
+  const PetscInt my_first = layout.first_owned();
+  MPI_Allgather(&my_first, 1, MPIU_INT, first.data(), 1, MPIU_INT, comm);
   SparseEntries out;
   std::vector<int> owner(e.size());
   std::vector<int> send_count(static_cast<size_t>(size), 0), recv_count(static_cast<size_t>(size));
+  SparseEntries global;
   for (size_t k = 0; k < e.size(); ++k) {
-    owner[k] = layout.owner(e.rows[k]);
-    if (owner[k] == rank) out.add(e.rows[k], e.cols[k], e.values[k]);
+    const PetscInt row = layout.global(e.rows[k]);
+    global.add(row, layout.global(e.cols[k]), e.values[k]);
+    owner[k] = static_cast<int>(std::upper_bound(first.begin(), first.end() - 1, row) - first.begin()) - 1;
+    if (owner[k] == rank) out.add(global.rows[k], global.cols[k], global.values[k]);
     else ++send_count[static_cast<size_t>(owner[k])];
   }
   std::vector<int> send_first(static_cast<size_t>(size) + 1, 0), recv_first(static_cast<size_t>(size) + 1, 0);
@@ -166,7 +175,7 @@ SparseEntries entries_of_owned_rows(const fem::DofLayout& layout, const SparseEn
   for (size_t k = 0; k < e.size(); ++k) {
     if (owner[k] == rank) continue;
     const size_t at = static_cast<size_t>(next[static_cast<size_t>(owner[k])]++);
-    send.rows[at] = e.rows[k], send.cols[at] = e.cols[k], send.values[at] = e.values[k];
+    send.rows[at] = global.rows[k], send.cols[at] = global.cols[k], send.values[at] = global.values[k];
   }
   const size_t n_own = out.size(), n_received = static_cast<size_t>(recv_first.back());
   out.rows.resize(n_own + n_received);
@@ -186,11 +195,10 @@ SparseEntries entries_of_owned_rows(const fem::DofLayout& layout, const SparseEn
 CompressedRows owned_constraint_rows(const fem::DofLayout& layout, PetscInt n_u, const SparseEntries& extra) {
   const PetscInt first = layout.first_owned();
   SparseEntries owned;
-  for (PetscInt a = n_u; a < layout.n_total(); ++a)
+  for (PetscInt a = n_u; a < layout.n_held(); ++a)
     if (layout.owns(a)) owned.add(layout.global(a) - first, layout.global(a), 0.0);
   const SparseEntries mine = entries_of_owned_rows(layout, extra);
-  for (size_t k = 0; k < mine.size(); ++k)
-    owned.add(layout.global(mine.rows[k]) - first, layout.global(mine.cols[k]), mine.values[k]);
+  for (size_t k = 0; k < mine.size(); ++k) owned.add(mine.rows[k] - first, mine.cols[k], mine.values[k]);
   return compress(layout.n_owned(), owned, layout.n_owned());
 }
 

@@ -10,6 +10,7 @@
 // rows of the current states. States (inactive / stick / slip) are frozen during one linear
 // solve and updated after it; the step converges only when no state changed.
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,10 @@
 #include <petscsys.h>
 
 #include "fem/app_view.hpp"
+
+namespace stiction::fem {
+class FieldSpace;
+}
 
 namespace stiction::nonlinear {
 
@@ -121,6 +126,11 @@ public:
   // Every multiplier node at (t, u, lambda) for reports; lambda points at this constraint's
   // multipliers. One process may call it alone (it writes the output).
   virtual std::vector<MultiplierNode> nodes(double t, fem::StateView u, const double* lambda) const = 0;
+  // The same constraint as built (its settings; no state, no distribution) over another
+  // space whose mesh holds the same surfaces: a mesh part that holds them whole
+  // (mesh::local_part with surface_tags). Its multipliers are the same nodes in the same
+  // order, at the part's vertices.
+  virtual std::unique_ptr<MultiplierConstraint> over(const fem::FieldSpace& space) const = 0;
 };
 
 }  // namespace stiction::nonlinear

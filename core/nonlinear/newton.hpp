@@ -156,8 +156,8 @@ public:
   QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& problem, const NewtonSettings& settings,
                     LinearSolver& linear);
   // Over a mesh part (scene::divide_scene): problem.space is the part's space, ownership its
-  // unknowns' owners and indices (kept by the layout: pass it moved when done with it); no
-  // contact yet. Outputs that are whole (displacement(),
+  // unknowns' owners and indices (kept by the layout: pass it moved when done with it), the
+  // contact multipliers among them when problem has constraints over the part's space. Outputs that are whole (displacement(),
   // state()) are in the whole space's app order.
   QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& problem, const mesh::LocalMesh& part,
                     fem::PartOwnership ownership, const NewtonSettings& settings, LinearSolver& linear);

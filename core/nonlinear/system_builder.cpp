@@ -109,12 +109,12 @@ NewtonSystemBuilder::NewtonSystemBuilder(const fem::DofLayout& layout, const Ela
   stiffness_ = std::make_unique<fem::StiffnessMatrix>(layout, space);
   STICTION_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(stiffness_->mat())));
   *system_.matrix.out() = stiffness_->mat();  // replaced by the augmented matrix with contact
-  const PetscInt n_total = layout.n_total();
   *system_.rhs.out() = layout.create_vector();
   add_field("u_l", space.linear_block(), space.dim());
   if (fem::is_quadratic(space.kind())) add_field("u_q", space.quadratic_block(), space.dim());
   if (space.has_pressure()) add_field("p", space.pressure_block(), 1);
-  if (n_multipliers > 0) add_field("lambda", {space.n_dofs(), static_cast<int>(n_total)}, space.dim());
+  // The multipliers follow the space's dofs in the layout's local index (whole or a part's).
+  if (n_multipliers > 0) add_field("lambda", {space.n_dofs(), static_cast<int>(layout.n_held())}, space.dim());
   if (space.has_pressure()) {
     *system_.pressure_mass.out() = fem::assemble_pressure_mass(layout, space);
     // The moduli of the (first) mixed law; the paper's scenes have one rubber body.

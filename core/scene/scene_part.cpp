@@ -7,14 +7,18 @@
 namespace stiction::scene {
 
 std::unique_ptr<ScenePart> divide_scene(MPI_Comm comm, const Scene& scene, int levels) {
-  if (!scene.problem.constraints.empty())
-    throw Error("scene '" + scene.name + "': a scene with contact cannot be divided into mesh parts yet",
-                ErrorKind::Input);
+  // Every process evaluates the contact pairs whole, so each part holds their surfaces whole.
+  std::vector<int> surface_tags;
+  for (const auto* c : scene.problem.constraints)
+    for (const auto& [role, tag] : c->surfaces()) surface_tags.push_back(tag);
+  if (!surface_tags.empty() && levels > 0)
+    throw Error("scene '" + scene.name + "': a scene with contact is divided at its own level (parts that hold "
+                "the contact surfaces are not refined yet)", ErrorKind::Input);
   const fem::FieldSpace& whole = *scene.space;
   const fem::MeshPartition partition = fem::partition_cells(comm, scene.mesh);
   auto out = std::make_unique<ScenePart>();
   out->partitioner = partition.partitioner;
-  out->part = mesh::local_part(scene.mesh, partition.cell_owner, partition.rank);
+  out->part = mesh::local_part(scene.mesh, partition.cell_owner, partition.rank, surface_tags);
   for (int l = 0; l < levels; ++l) out->part = mesh::refine_parts(comm, out->part);
   const mesh::LocalMesh& part = out->part;
   // mesh::refine numbers the children of cell c consecutively from c * children.
@@ -32,13 +36,23 @@ std::unique_ptr<ScenePart> divide_scene(MPI_Comm comm, const Scene& scene, int l
         for (int k = 0; k <= part.mesh.dim; ++k) has_pressure[part.mesh.cell(c)[k]] = 1;
   }
   out->space = std::make_unique<fem::FieldSpace>(part.mesh, whole.kind(), has_pressure);
-  out->ownership = fem::own_part_unknowns(comm, part, *out->space, fem::number_part_space(comm, part, *out->space));
+  // The contact pairs over the part's space, their multipliers after its dofs, in order.
+  std::vector<int> multiplier_vertices;
+  for (const auto* c : scene.problem.constraints) {
+    out->contacts.push_back(c->over(*out->space));
+    const std::vector<int> v = out->contacts.back()->multiplier_vertices();
+    multiplier_vertices.insert(multiplier_vertices.end(), v.begin(), v.end());
+  }
+  out->ownership = fem::own_part_unknowns(comm, part, *out->space, fem::number_part_space(comm, part, *out->space),
+                                          multiplier_vertices);
 
   // The problem's conditions and loads are by facet tag and reference position, which the
   // part's facets and vertices keep; its laws are by cell.
   nonlinear::ElasticityProblem& p = out->problem;
   p = scene.problem;
   p.space = out->space.get();
+  p.constraints.clear();
+  for (const auto& c : out->contacts) p.constraints.push_back(c.get());
   p.cell_material.clear();
   for (int c = 0; c < part.mesh.n_cells(); ++c) {
     p.cell_material.push_back(ancestor_law(c));

@@ -12,15 +12,21 @@
 // scene's own finer level where its bodies are refined uniformly; a generator that re-meshes
 // each level (curved Gmsh geometry, structured tubes) gives another mesh there.
 //
-// Contact is not divided yet: a scene with contact pairs is refused.
+// With contact, every process evaluates the contact pairs whole (as on the whole mesh): each
+// part also holds the contact surfaces whole (the cells on them as ghosts), the pairs are
+// rebuilt over the part's space and their multipliers are the part's unknowns after its
+// dofs, owned by their slave vertex's owner. Such a scene is divided at its own level (its
+// parts are not refined yet).
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <mpi.h>
 
 #include "fem/field_space.hpp"
 #include "fem/part_ownership.hpp"
 #include "mesh/local_mesh.hpp"
+#include "nonlinear/multiplier_constraint.hpp"
 #include "nonlinear/problem.hpp"
 #include "scene/scene.hpp"
 
@@ -30,7 +36,8 @@ struct ScenePart {
   mesh::LocalMesh part;
   std::unique_ptr<fem::FieldSpace> space;  // over part.mesh
   fem::PartOwnership ownership;            // of space's unknowns
-  nonlinear::ElasticityProblem problem;    // over space; its laws are the scene's
+  std::vector<std::unique_ptr<nonlinear::MultiplierConstraint>> contacts;  // the scene's pairs over space
+  nonlinear::ElasticityProblem problem;    // over space; its laws are the scene's, its constraints `contacts`
   std::vector<int> body_of_cell;           // per part cell (Scene::body_of_cell)
   std::string partitioner;                 // what split the cells (empty on one process)
 

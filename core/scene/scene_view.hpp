@@ -21,12 +21,15 @@ struct SceneView {
   const nonlinear::ElasticityProblem* problem = nullptr;
   const std::vector<int>* body_of_cell = nullptr;  // per cell of space's mesh
   bool in_parts = false;
+  const std::vector<int>* vertex_ids = nullptr;  // in parts: each vertex's id in the whole mesh
   // The whole mesh's and space's sizes.
   std::int64_t n_vertices = 0, n_cells = 0, n_linear = 0, n_quadratic = 0, n_pressure = 0;
 
   SceneView(const Scene& whole);  // NOLINT(google-explicit-constructor): a scene is its own view
   std::int64_t n_dofs() const { return n_linear + n_quadratic + n_pressure; }
   int dim() const { return space->dim(); }
+  // The whole mesh's id of vertex v of space's mesh.
+  int whole_vertex(int v) const { return vertex_ids ? (*vertex_ids)[v] : v; }
 };
 
 // A process's part of `scene` refined to `level` (collective: the whole counts are summed

@@ -327,9 +327,11 @@ void expect_pieces_join_into_the_whole(const fs::path& one, const fs::path& two,
   EXPECT_EQ(cells, std::stoi(whole.piece.at("NumberOfCells"))) << "the pieces hold every cell once";
 }
 
-// On two processes each process writes its own cells as a VTU piece, from the state it holds
-// (its owned unknowns and ghosts), and rank 0 a PVTU joining them (the Newton path is the
-// same). Rank 0 writes contact.csv from the contact surfaces it holds: the one-process table.
+// On two processes each process holds its part of the mesh with the contact surfaces whole
+// and writes its own cells as a VTU piece, from the state it holds (its owned unknowns and
+// ghosts), and rank 0 a PVTU joining them (the Newton path is the same). Rank 0 writes
+// contact.csv from the contact surfaces it holds, with the whole mesh's vertex ids: the
+// one-process table.
 TEST_F(StictionUnderMpirun, EachProcessWritesItsPieceOfTheSolutionAndRankZeroJoinsThem) {
   const fs::path one = dir_ / "one", two = dir_ / "two";
   const std::vector<std::string> common{"solve", "sliding-block-2d", "--quick", "--quiet", "--out"};
@@ -341,6 +343,9 @@ TEST_F(StictionUnderMpirun, EachProcessWritesItsPieceOfTheSolutionAndRankZeroJoi
   const CliRun r1 = run(1, with_out(one)), r2 = run(2, with_out(two));
   ASSERT_EQ(r1.exit_code, 0) << r1.err;
   ASSERT_EQ(r2.exit_code, 0) << r2.err;
+  EXPECT_NE(stiction::test::read_file(two / "steps.csv").find("each holds its part of the mesh and the contact surfaces whole"),
+            std::string::npos)
+      << "the two processes did not run on mesh parts";
   expect_pieces_join_into_the_whole(one, two, true);
 
   const auto contact_one = stiction::harness::read_csv((one / "contact.csv").string());

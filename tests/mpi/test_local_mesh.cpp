@@ -7,11 +7,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <functional>
+#include <map>
 #include <memory>
 #include <random>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "builtin_scenes.hpp"
@@ -24,6 +28,7 @@
 #include "fem/part_ownership.hpp"
 #include "fem/stiffness_matrix.hpp"
 #include "mesh/local_mesh.hpp"
+#include "nonlinear/multiplier_constraint.hpp"
 #include "scene/scene.hpp"
 #include "support/mesh_checks.hpp"
 #include "support/test_names.hpp"
@@ -116,20 +121,30 @@ INSTANTIATE_TEST_SUITE_P(Scenes, RefinedInParts, ::testing::ValuesIn(kRefinedSce
 // layout does.
 class NumberedInParts : public ::testing::TestWithParam<const char*> {};
 
+// The facet tags of a scene's contact surfaces (slave and master of every pair).
+std::vector<int> contact_surface_tags(const scene::Scene& s) {
+  std::vector<int> tags;
+  for (const auto* c : s.problem.constraints)
+    for (const auto& [role, tag] : c->surfaces()) tags.push_back(tag);
+  return tags;
+}
+
 // A scene's level-0 mesh divided between the processes, each with its part's own space (its
-// pressure where the whole space has one) and that space's whole-space numbering. Not to be
-// moved: the space points into the part.
+// pressure where the whole space has one) and that space's whole-space numbering; with
+// hold_surfaces, each part holds the contact surfaces whole. Not to be moved: the space
+// points into the part.
 struct SceneInParts {
   std::unique_ptr<scene::Scene> scene;
   fem::MeshPartition partition;
   mesh::LocalMesh part;
   std::unique_ptr<fem::FieldSpace> space;
   fem::PartNumbering numbering;
-  explicit SceneInParts(const char* name) {
+  explicit SceneInParts(const char* name, bool hold_surfaces = false) {
     scene = scene::build_scene(harness::builtin_scenes().at(name), name, ".", 0);
     const fem::FieldSpace& whole = *scene->space;
     partition = fem::partition_cells(PETSC_COMM_WORLD, scene->mesh);
-    part = mesh::local_part(scene->mesh, partition.cell_owner, partition.rank);
+    part = mesh::local_part(scene->mesh, partition.cell_owner, partition.rank,
+                            hold_surfaces ? contact_surface_tags(*scene) : std::vector<int>{});
     std::vector<char> has_pressure;
     for (int v = 0; whole.has_pressure() && v < part.mesh.n_vertices(); ++v)
       has_pressure.push_back(whole.pressure_dof(part.vertex_ids[v]) >= 0);
@@ -138,8 +153,27 @@ struct SceneInParts {
   }
 };
 
-TEST_P(NumberedInParts, AsTheWholeSpaceNumbersThem) {
-  const SceneInParts s(GetParam());
+// A part's ownership against the whole mesh's layout: the same owned count and range, and
+// for every unknown the part holds the same PETSc index and, where the part can tell, owner.
+void expect_owned_as_the_layout(const fem::PartOwnership& o, const fem::DofLayout& layout, int rank) {
+  EXPECT_EQ(o.n_owned, layout.n_owned());
+  EXPECT_EQ(o.first_owned, layout.first_owned());
+  int wrong_owner = 0, wrong_index = 0, not_owned = 0, unknown_owner = 0;
+  for (size_t i = 0; i < o.app.size(); ++i) {
+    wrong_owner += o.owner[i] >= 0 && o.owner[i] != layout.owner(o.app[i]);
+    unknown_owner += o.owner[i] < 0 && layout.owns(o.app[i]);  // only another's can be unknown
+    wrong_index += o.petsc[i] != layout.global(o.app[i]);
+    not_owned += o.owner[i] != rank;
+  }
+  EXPECT_EQ(wrong_owner, 0) << "of " << o.app.size() << " unknowns";
+  EXPECT_EQ(unknown_owner, 0) << "of " << o.app.size() << " unknowns";
+  EXPECT_EQ(wrong_index, 0) << "of " << o.app.size() << " unknowns";
+  EXPECT_GT(not_owned, 0);
+}
+
+// The part's nodes and pressures numbered as the whole space numbers them, its unknowns
+// owned and PETSc-numbered as the whole mesh's layout does.
+void expect_numbered_as_the_whole_space(const SceneInParts& s) {
   const fem::FieldSpace& whole = *s.scene->space;
   const fem::FieldSpace& space = *s.space;
   const mesh::LocalMesh& part = s.part;
@@ -172,22 +206,90 @@ TEST_P(NumberedInParts, AsTheWholeSpaceNumbersThem) {
 
   // Ownership and PETSc's numbering as the whole mesh's layout gives them; the unknowns the
   // part holds but does not own get theirs from their owners.
-  const fem::PartOwnership o = fem::own_part_unknowns(PETSC_COMM_WORLD, part, space, n);
-  const fem::DofLayout layout(PETSC_COMM_WORLD, whole, s.partition, {});
-  EXPECT_EQ(o.n_owned, layout.n_owned());
-  EXPECT_EQ(o.first_owned, layout.first_owned());
-  int wrong_owner = 0, wrong_index = 0, not_owned = 0, unknown_owner = 0;
-  for (size_t i = 0; i < o.app.size(); ++i) {
-    wrong_owner += o.owner[i] >= 0 && o.owner[i] != layout.owner(o.app[i]);
-    unknown_owner += o.owner[i] < 0 && layout.owns(o.app[i]);  // only another's can be unknown
-    wrong_index += o.petsc[i] != layout.global(o.app[i]);
-    not_owned += o.owner[i] != s.partition.rank;
-  }
-  EXPECT_EQ(wrong_owner, 0) << "of " << o.app.size() << " unknowns";
-  EXPECT_EQ(unknown_owner, 0) << "of " << o.app.size() << " unknowns";
-  EXPECT_EQ(wrong_index, 0) << "of " << o.app.size() << " unknowns";
-  EXPECT_GT(not_owned, 0);
+  expect_owned_as_the_layout(fem::own_part_unknowns(PETSC_COMM_WORLD, part, space, n),
+                             fem::DofLayout(PETSC_COMM_WORLD, whole, s.partition, {}), s.partition.rank);
 }
+
+TEST_P(NumberedInParts, AsTheWholeSpaceNumbersThem) { expect_numbered_as_the_whole_space(SceneInParts(GetParam())); }
+
+// A part can hold the contact surfaces whole (every process evaluates contact whole): besides
+// its own cells and their vertex layer, every cell with a facet on a contact surface as a
+// ghost, each group ascending, and every facet of those surfaces; numbered and owned as the
+// whole space and layout number them (the surfaces' vertices away from the own cells have no
+// owner the part can tell).
+class HoldingContactSurfaces : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(HoldingContactSurfaces, HoldThemWholeNumberedAsTheWholeSpace) {
+  const SceneInParts s(GetParam(), true);
+  const mesh::Mesh& whole = s.scene->mesh;
+  const std::vector<int> tags = contact_surface_tags(*s.scene);
+  EXPECT_FALSE(tags.empty());
+  const auto on_surface = [&](int tag) { return std::find(tags.begin(), tags.end(), tag) != tags.end(); };
+  std::vector<std::array<int, 3>> surface_keys;
+  std::vector<int> surface_facets;
+  for (int f = 0; f < whole.n_facets(); ++f)
+    if (on_surface(whole.facet_tags[f])) {
+      surface_keys.push_back(mesh::facet_key(whole.facet(f), whole.dim));
+      surface_facets.push_back(f);
+    }
+  std::sort(surface_keys.begin(), surface_keys.end());
+  std::vector<int> expected = own_cells_and_vertex_layer(whole, s.partition.cell_owner, s.partition.rank);
+  const size_t n_own = static_cast<size_t>(s.part.n_own_cells);
+  int surface_only = 0;  // surface cells beyond the vertex layer
+  for (int c = 0; c < whole.n_cells(); ++c) {
+    if (s.partition.cell_owner[c] == s.partition.rank ||
+        std::find(expected.begin() + static_cast<long>(n_own), expected.end(), c) != expected.end())
+      continue;
+    for (const auto& key : mesh::cell_facet_keys(whole.cell(c), whole.dim))
+      if (std::binary_search(surface_keys.begin(), surface_keys.end(), key)) {
+        expected.push_back(c);
+        ++surface_only;
+        break;
+      }
+  }
+  std::sort(expected.begin() + static_cast<long>(n_own), expected.end());
+  EXPECT_EQ(s.part.cell_ids, expected);
+  EXPECT_GT(surface_only, 0) << "the surfaces lie within the vertex layer: nothing is tested";
+  std::vector<int> held_surface_facets;
+  for (int f = 0; f < s.part.mesh.n_facets(); ++f)
+    if (on_surface(s.part.mesh.facet_tags[f])) held_surface_facets.push_back(s.part.facet_ids[f]);
+  EXPECT_EQ(held_surface_facets, surface_facets);
+  expect_numbered_as_the_whole_space(s);
+}
+
+// With the surfaces whole, a part holds every contact multiplier (after its space's dofs),
+// owned by its slave vertex's owner and PETSc-numbered as the whole mesh's layout numbers
+// the multipliers it appends; the layout over the part has the whole system's size.
+TEST_P(HoldingContactSurfaces, OwnAndNumberTheMultipliersAsTheWholeLayout) {
+  const SceneInParts s(GetParam(), true);
+  std::vector<int> whole_vertices, part_vertices;  // every constraint's multiplier vertices, in order
+  for (const auto* c : s.scene->problem.constraints) {
+    const std::vector<int> v = c->multiplier_vertices();
+    whole_vertices.insert(whole_vertices.end(), v.begin(), v.end());
+  }
+  EXPECT_FALSE(whole_vertices.empty());
+  for (int v : whole_vertices) {
+    const auto at = std::lower_bound(s.part.vertex_ids.begin(), s.part.vertex_ids.end(), v);
+    part_vertices.push_back(at != s.part.vertex_ids.end() && *at == v ? static_cast<int>(at - s.part.vertex_ids.begin())
+                                                                        : -1);
+  }
+  EXPECT_EQ(std::count(part_vertices.begin(), part_vertices.end(), -1), 0) << "a slave vertex is not in the part";
+  std::replace(part_vertices.begin(), part_vertices.end(), -1, 0);  // no early return before the collectives
+  fem::PartOwnership o = fem::own_part_unknowns(PETSC_COMM_WORLD, s.part, *s.space, s.numbering, part_vertices);
+  const fem::DofLayout whole(PETSC_COMM_WORLD, *s.scene->space, s.partition, whole_vertices);
+  EXPECT_EQ(o.app.size(), static_cast<size_t>(s.space->n_dofs()) + whole_vertices.size());
+  int owned_multipliers = 0;
+  for (size_t k = 0; k < whole_vertices.size(); ++k)
+    owned_multipliers += o.owner[static_cast<size_t>(s.space->n_dofs()) + k] == s.partition.rank;
+  int owned_anywhere = 0;  // each multiplier has one owner
+  MPI_Allreduce(&owned_multipliers, &owned_anywhere, 1, MPI_INT, MPI_SUM, PETSC_COMM_WORLD);
+  EXPECT_EQ(owned_anywhere, static_cast<int>(whole_vertices.size()));
+  expect_owned_as_the_layout(o, whole, s.partition.rank);
+  const fem::DofLayout over_part(PETSC_COMM_WORLD, s.part, *s.space, std::move(o));
+  EXPECT_EQ(over_part.n_total(), whole.n_total());
+  EXPECT_EQ(over_part.n_owned(), whole.n_owned());
+}
+
 
 // A state of small random displacements (and pressures) of the whole space, the same on
 // every process.
@@ -372,6 +474,86 @@ TEST_P(NumberedInParts, HoldTheStateAsGhostedVectors) {
 const char* const kNumberedScenes[] = {"mooney-rivlin-block", "block-strips-mr", "hertz-spheres-3d"};
 
 INSTANTIATE_TEST_SUITE_P(Scenes, NumberedInParts, ::testing::ValuesIn(kNumberedScenes),
+                         [](const auto& info) { return test::identifier(info.param); });
+
+// Jacobian entries summed by (row, column), the indices taken through `app`.
+std::map<std::pair<PetscInt, PetscInt>, double> entries_by_app(const nonlinear::SparseEntries& e,
+                                                               const std::function<PetscInt(PetscInt)>& app) {
+  std::map<std::pair<PetscInt, PetscInt>, double> out;
+  for (size_t k = 0; k < e.size(); ++k) out[{app(e.rows[k]), app(e.cols[k])}] += e.values[k];
+  return out;
+}
+
+// With the surfaces whole, a contact pair rebuilt over the part's space
+// (MultiplierConstraint::over) is the whole mesh's pair: the same multiplier nodes in the same
+// order and, at a state of small random displacements and multipliers, the same rows r_c,
+// constraint forces at every unknown (the part holds all of them), Jacobian entries (in app
+// numbering) and state updates, to round-off. Every process evaluates the whole pair here.
+TEST_P(HoldingContactSurfaces, EvaluateTheirPairsAsTheWholeMesh) {
+  const SceneInParts s(GetParam(), true);
+  const fem::FieldSpace& whole = *s.scene->space;
+  const fem::FieldSpace& space = *s.space;
+  const fem::PartOwnership o = fem::own_part_unknowns(PETSC_COMM_WORLD, s.part, space, s.numbering);
+  const std::vector<double> u_whole = random_whole_state(whole);
+  std::vector<double> u(o.app.size());
+  for (size_t i = 0; i < u.size(); ++i) u[i] = u_whole[o.app[i]];
+  const double t = 1.0;  // block-strips: the ground has risen into the strips
+  std::mt19937 gen(7);
+  std::uniform_real_distribution<double> traction(-0.2, 0.2);
+  int pairs = 0, constrained = 0;
+  for (const auto* c : s.scene->problem.constraints) {
+    SCOPED_TRACE(c->name());
+    const auto a = c->over(whole), b = c->over(space);
+    std::vector<int> vertices = b->multiplier_vertices();
+    for (int& v : vertices) v = s.part.vertex_ids[v];
+    EXPECT_EQ(vertices, a->multiplier_vertices());
+    const int m = a->n_multipliers();
+    if (b->n_multipliers() != m) continue;  // failed above; nothing below is collective
+    ++pairs;
+    std::vector<double> lambda(m), dlambda(m);
+    for (double& x : lambda) x = traction(gen);
+    for (double& x : dlambda) x = traction(gen);
+    const PetscInt n_whole = whole.n_dofs(), n_part = space.n_dofs();
+    const auto part_app = [&](PetscInt i) { return i < n_part ? o.app[i] : n_whole + (i - n_part); };
+    a->begin_increment(0.0, u_whole);
+    b->begin_increment(0.0, u);
+    for (int round = 0; round < 2; ++round) {  // the first states, then those the update sets
+      std::vector<double> ru_whole(u_whole.size(), 0.0), ru(u.size(), 0.0), rc_whole(m), rc(m);
+      nonlinear::SparseEntries j_whole, j;
+      a->evaluate(t, u_whole, lambda.data(), ru_whole, rc_whole.data(), &j_whole, n_whole);
+      b->evaluate(t, u, lambda.data(), ru, rc.data(), &j, n_part);
+      double scale = 0, worst = 0, held = 0, all = 0;
+      for (double x : ru_whole) scale = std::max(scale, std::abs(x)), all += std::abs(x);
+      for (size_t i = 0; i < ru.size(); ++i) worst = std::max(worst, std::abs(ru[i] - ru_whole[o.app[i]])), held += std::abs(ru[i]);
+      EXPECT_GT(scale, 0);
+      EXPECT_LE(worst, 1e-12 * scale) << "round " << round;
+      EXPECT_NEAR(held, all, 1e-10 * all) << "a force lands on an unknown the part does not hold";
+      for (int k = 0; k < m; ++k) EXPECT_NEAR(rc[k], rc_whole[k], 1e-12 * (1 + std::abs(rc_whole[k]))) << "row " << k;
+      const auto ej = entries_by_app(j, part_app);
+      const auto ej_whole = entries_by_app(j_whole, [](PetscInt i) { return i; });
+      EXPECT_EQ(ej.size(), ej_whole.size()) << "round " << round;
+      double jscale = 0, jworst = 0;
+      for (const auto& [key, v] : ej_whole) {
+        jscale = std::max(jscale, std::abs(v));
+        const auto it = ej.find(key);
+        jworst = std::max(jworst, std::abs(v - (it == ej.end() ? 0.0 : it->second)));
+      }
+      EXPECT_LE(jworst, 1e-12 * jscale) << "round " << round;
+      if (round == 0) {
+        EXPECT_EQ(b->update_states(t, u, lambda.data(), dlambda.data()),
+                  a->update_states(t, u_whole, lambda.data(), dlambda.data()));
+        EXPECT_EQ(b->states(), a->states());
+        const auto states = a->states();
+        constrained += static_cast<int>(std::count_if(states.begin(), states.end(),
+                                                      [](char x) { return x != nonlinear::MultiplierConstraint::kFreeState; }));
+      }
+    }
+  }
+  EXPECT_GT(pairs, 0);
+  EXPECT_GT(constrained, 0) << "no node entered contact: the constrained rows are not compared";
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, HoldingContactSurfaces, ::testing::Values("block-strips", "hertz-spheres-3d"),
                          [](const auto& info) { return test::identifier(info.param); });
 
 // The curved scenes' meshes are curved, so the test compares curved edges too.

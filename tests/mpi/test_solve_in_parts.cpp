@@ -1,6 +1,7 @@
 // Run under `mpirun -n 2` with the other distributed tests. A scene solved on mesh parts
 // (scene::divide_scene: each process holds its cells, the layer around them and its own
-// space, not the whole mesh) takes the whole-mesh distributed run's Newton path: the same
+// space, not the whole mesh; with contact, the contact surfaces whole besides and the pairs
+// over its space) takes the whole-mesh distributed run's Newton path: the same
 // Newton iterations per load step, the same Krylov iterations, and the same converged
 // state and forces, to 1e-8 relative; and one whose coarse mesh alone was whole, refined in
 // parts, solves the finer level as the whole mesh does.
@@ -93,7 +94,9 @@ TEST_P(SolveInParts, FollowsTheWholeMeshNewtonPath) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, SolveInParts,
                          ::testing::Values(Case{"cook-membrane-2d", "lu-mumps"}, Case{"block-compression", "schur-amg"},
-                                           Case{"mooney-rivlin-block", "schur-amg"}),
+                                           Case{"mooney-rivlin-block", "schur-amg"},
+                                           Case{"hertz-cylinder-2d", "lu-mumps"}, Case{"sliding-block-2d", "lu-mumps"},
+                                           Case{"self-contact-2d", "lu-mumps"}, Case{"hertz-spheres-3d", "schur-amg"}),
                          [](const auto& info) {
                            return test::identifier(std::string(info.param.scene) + "_" + info.param.backend);
                          });
@@ -125,10 +128,11 @@ TEST_P(SolveRefinedInParts, FollowsTheWholeFinerLevel) {
 INSTANTIATE_TEST_SUITE_P(Scenes, SolveRefinedInParts, ::testing::Values("cook-membrane-2d", "cook-membrane-3d"),
                          [](const auto& info) { return test::identifier(info.param); });
 
-// Contact is not divided yet: such a scene is refused with a message, not run wrongly.
-TEST(SolveInParts, RefusesAContactScene) {
+// Parts that hold the contact surfaces are not refined yet: a scene with contact asked to be
+// refined in parts is refused with a message, not run wrongly.
+TEST(SolveRefinedInParts, RefusesAContactScene) {
   auto scene = harness::open_scene("hertz-cylinder-2d", 0, {});
-  EXPECT_THROW(scene::divide_scene(PETSC_COMM_WORLD, *scene), Error);
+  EXPECT_THROW(scene::divide_scene(PETSC_COMM_WORLD, *scene, 1), Error);
 }
 
 }  // namespace
