@@ -31,6 +31,7 @@ RunScene open_run_scene(MPI_Comm comm, const std::string& name, int level, const
   run.refined_in_parts = run.scene->level == wanted ? 0 : wanted;
   run.part = scene::divide_scene(comm, *run.scene, run.refined_in_parts);
   run.view.emplace(scene::view_of_part(comm, *run.scene, *run.part, wanted));
+  scene::release_whole_mesh(*run.scene);  // the parts hold all a process needs
   return run;
 }
 

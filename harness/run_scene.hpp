@@ -6,7 +6,7 @@
 // levels are uniform refinements of level 0 and it has no contact, level 0 is divided and
 // the parts refined where they are, so that the finer mesh is never whole on any process
 // (the same mesh as the whole level; its cells are split as level 0's were). A scene with
-// contact is built whole at its level and then divided.
+// contact is built whole at its level and then divided. Once divided, the whole mesh is freed.
 #include <memory>
 #include <optional>
 #include <string>
@@ -23,7 +23,8 @@
 namespace stiction::harness {
 
 struct RunScene {
-  std::unique_ptr<scene::Scene> scene;     // whole (at level 0 when refined in parts)
+  // Whole; divided, its settings, laws and loads alone (scene::release_whole_mesh).
+  std::unique_ptr<scene::Scene> scene;
   std::unique_ptr<scene::ScenePart> part;  // this process's part; null: the whole scene is solved
   int refined_in_parts = 0;                // levels the parts were refined after division
   std::optional<scene::SceneView> view;    // what the outputs read

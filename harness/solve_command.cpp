@@ -128,11 +128,11 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   std::unique_ptr<IterationTable> iteration_table;
   std::unique_ptr<ContactTable> contact_table;
   if (scene->output.csv && writer) {
-    if (!scene->problem.constraints.empty())
-      contact_table = std::make_unique<ContactTable>(out_dir + "/contact.csv", header, scene->mesh.dim, restart);
+    if (!view.problem->constraints.empty())
+      contact_table = std::make_unique<ContactTable>(out_dir + "/contact.csv", header, view.dim(), restart);
     table = std::make_unique<StepTable>(out_dir + "/steps.csv", header, view, restart);
     iteration_table = std::make_unique<IterationTable>(out_dir + "/iterations.csv", header,
-                                                       !scene->problem.constraints.empty(), restart);
+                                                       !view.problem->constraints.empty(), restart);
   }
   std::unique_ptr<PvdCollection> pvd;
   if (writer) pvd = std::make_unique<PvdCollection>(out_dir + "/solution.pvd");

@@ -61,4 +61,14 @@ std::unique_ptr<ScenePart> divide_scene(MPI_Comm comm, const Scene& scene, int l
   return out;
 }
 
+void release_whole_mesh(Scene& scene) {
+  scene.problem.space = nullptr;
+  scene.problem.constraints.clear();
+  std::vector<const materials::Material*>().swap(scene.problem.cell_material);
+  scene.contacts.clear();
+  scene.space.reset();
+  std::vector<int>().swap(scene.body_of_cell);
+  scene.mesh = mesh::Mesh{};
+}
+
 }  // namespace stiction::scene

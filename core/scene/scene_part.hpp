@@ -49,4 +49,9 @@ struct ScenePart {
 // Collective. The scene must outlive the result (its laws and load functions are shared).
 std::unique_ptr<ScenePart> divide_scene(MPI_Comm comm, const Scene& scene, int levels = 0);
 
+// Once a scene is divided its parts need nothing of its whole mesh: frees the mesh, the
+// space, the contact pairs and the per-cell arrays. Its name, bodies, laws, loads, load
+// steps and settings stay; its problem has no space, cells or constraints after it.
+void release_whole_mesh(Scene& scene);
+
 }  // namespace stiction::scene
