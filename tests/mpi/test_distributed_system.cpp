@@ -26,6 +26,7 @@
 #include "nonlinear/newton.hpp"
 #include "multiplier_schur_parts.hpp"
 #include "registry.hpp"
+#include "scene/scene_part.hpp"
 #include "support/test_names.hpp"
 
 namespace {
@@ -38,6 +39,7 @@ struct SystemProducts {
   std::vector<std::vector<std::vector<double>>> parts_times_x;
   std::vector<int> newton_per_step;
   int tangents_beside_system = 0;  // systems solved while a tangent matrix was also alive
+  int cells_held = 0;              // cells of the mesh this process's space is over
 };
 
 // x in app order: a fixed pseudo-random vector, the same on every process.
@@ -49,16 +51,20 @@ std::vector<double> probe(size_t n) {
   return x;
 }
 
-// M, a matrix on the block of unknowns [first, first + m) in its field's numbering
-// (DofLayout::block_numbering), times x's entries there; the product in app order.
-std::vector<double> block_times(const fem::DofLayout& layout, Mat M, PetscInt first, const std::vector<double>& x) {
+// M, a matrix on the block of unknowns [first, last) of the layout's local index in its
+// field's numbering (DofLayout::block_numbering), times x's entries there (x in app order);
+// the product in the block's app order, NaN where this process holds no unknown (over a mesh
+// part). The block's app indices are the last M-size ones before `app_end`.
+std::vector<double> block_times(const fem::DofLayout& layout, Mat M, PetscInt first, PetscInt last, PetscInt app_end,
+                                const std::vector<double>& x) {
   PetscInt m;
   STICTION_PETSC(MatGetSize(M, &m, nullptr));
-  const std::vector<PetscInt> number = layout.block_numbering(first, first + m);
+  const PetscInt app_first = app_end - m;
+  const std::vector<PetscInt> number = layout.block_numbering(first, last);
   PetscVec xv, yv, all;
   STICTION_PETSC(MatCreateVecs(M, xv.out(), yv.out()));
-  for (PetscInt k = 0; k < m; ++k)
-    if (layout.owns(first + k)) STICTION_PETSC(VecSetValue(xv, number[k], x[first + k], INSERT_VALUES));
+  for (PetscInt k = 0; k < last - first; ++k)
+    if (layout.owns(first + k)) STICTION_PETSC(VecSetValue(xv, number[k], x[layout.app(first + k)], INSERT_VALUES));
   STICTION_PETSC(VecAssemblyBegin(xv));
   STICTION_PETSC(VecAssemblyEnd(xv));
   STICTION_PETSC(MatMult(M, xv, yv));
@@ -68,20 +74,27 @@ std::vector<double> block_times(const fem::DofLayout& layout, Mat M, PetscInt fi
   STICTION_PETSC(VecScatterEnd(to_all, yv, all, INSERT_VALUES, SCATTER_FORWARD));
   STICTION_PETSC(VecScatterDestroy(&to_all));
   const PetscScalar* a;
-  std::vector<double> y(static_cast<size_t>(m));
+  std::vector<double> y(static_cast<size_t>(m), std::nan(""));
   STICTION_PETSC(VecGetArrayRead(all, &a));
-  for (PetscInt k = 0; k < m; ++k) y[k] = a[number[k]];
+  for (PetscInt k = 0; k < last - first; ++k) y[layout.app(first + k) - app_first] = a[number[k]];
   STICTION_PETSC(VecRestoreArrayRead(all, &a));
   return y;
 }
 
-SystemProducts solve_recording(MPI_Comm comm, const std::string& name, const std::string& backend) {
+// on_parts: each process holds its part of the mesh (scene::divide_scene), not the whole.
+SystemProducts solve_recording(MPI_Comm comm, const std::string& name, const std::string& backend,
+                               bool on_parts = false) {
   auto scene = harness::open_scene(name, 0, {});
   auto solver = solvers::create_solver(backend, comm);
-  nonlinear::QuasiStaticSolver newton(comm, scene->problem, scene->newton, *solver);
+  const auto parts = on_parts ? scene::divide_scene(comm, *scene) : nullptr;
+  const nonlinear::ElasticityProblem& problem = parts ? parts->problem : scene->problem;
+  nonlinear::QuasiStaticSolver newton = parts ? nonlinear::QuasiStaticSolver(comm, problem, parts->part, parts->ownership,
+                                                                              scene->newton, *solver)
+                                              : nonlinear::QuasiStaticSolver(comm, problem, scene->newton, *solver);
   const fem::DofLayout& layout = newton.layout();
   const std::vector<double> x = probe(layout.n_total());
   SystemProducts out;
+  out.cells_held = problem.space->mesh().n_cells();
   newton.set_system_observer([&](const nonlinear::NewtonSystem& sys, Vec, const nonlinear::LinearSolveStats&, int, int) {
     PetscVec xv, yv;
     *xv.out() = layout.create_vector();
@@ -94,12 +107,15 @@ SystemProducts solve_recording(MPI_Comm comm, const std::string& name, const std
     out.matrix_times_x.push_back(y);
     out.rhs.push_back(b);
     std::vector<std::vector<double>> parts;
-    const fem::FieldSpace& space = *scene->problem.space;
-    if (sys.pressure_mass) parts.push_back(block_times(layout, sys.pressure_mass, space.pressure_block().first, x));
+    const fem::FieldSpace& space = *problem.space;
+    const PetscInt n_multipliers = layout.n_held() - space.n_dofs();
+    if (sys.pressure_mass)
+      parts.push_back(block_times(layout, sys.pressure_mass, space.pressure_block().first, space.pressure_block().second,
+                                  layout.n_total() - n_multipliers, x));
     if (sys.multiplier_surface.mass) {  // the Schur parts as the contact preconditioner forms them
       const solvers::MultiplierSchurParts schur = solvers::form_multiplier_schur_parts(sys.multiplier_surface);
       for (Mat part : {schur.mass.get(), schur.laplacian.get(), schur.slip_coupling.get()})
-        parts.push_back(block_times(layout, part, space.n_dofs(), x));
+        parts.push_back(block_times(layout, part, space.n_dofs(), layout.n_held(), layout.n_total(), x));
     }
     out.parts_times_x.push_back(parts);
     if (newton.tangent_beside_system()) ++out.tangents_beside_system;
@@ -115,9 +131,11 @@ double max_abs(const std::vector<double>& a) {
   return m;
 }
 
+// Over the entries b has (not NaN: a block product over a mesh part holds only the part's).
 double max_difference(const std::vector<double>& a, const std::vector<double>& b) {
   double diff = 0;
-  for (size_t i = 0; i < a.size(); ++i) diff = std::max(diff, std::abs(a[i] - b[i]));
+  for (size_t i = 0; i < a.size(); ++i)
+    if (!std::isnan(b[i])) diff = std::max(diff, std::abs(a[i] - b[i]));
   return diff;
 }
 
@@ -132,12 +150,8 @@ void PrintTo(const Case& c, std::ostream* os) { *os << c.scene << " with " << c.
 
 class DistributedSystem : public ::testing::TestWithParam<Case> {};
 
-TEST_P(DistributedSystem, EqualsTheOneProcessSystemAtEveryNewtonIteration) {
-  int processes = 1;
-  MPI_Comm_size(PETSC_COMM_WORLD, &processes);
-  ASSERT_EQ(processes, 2) << "run under mpirun -n 2";
-  const SystemProducts alone = solve_recording(PETSC_COMM_SELF, GetParam().scene, GetParam().backend);
-  const SystemProducts together = solve_recording(PETSC_COMM_WORLD, GetParam().scene, GetParam().backend);
+// The distributed run's systems against the one-process run's, at every Newton iteration.
+void expect_same_systems(const SystemProducts& alone, const SystemProducts& together, size_t preconditioner_parts) {
   EXPECT_EQ(alone.newton_per_step, together.newton_per_step);
   // With contact the augmented matrix holds the tangent's rows, and the tangent is dropped
   // before the solve (one process: merged in place; several: copied, then released).
@@ -157,17 +171,42 @@ TEST_P(DistributedSystem, EqualsTheOneProcessSystemAtEveryNewtonIteration) {
               kTolerance * max_abs(alone.matrix_times_x[k]))
         << "system " << k;
     EXPECT_LT(max_difference(alone.rhs[k], together.rhs[k]), kTolerance * rhs_scale) << "system " << k;
-    ASSERT_EQ(alone.parts_times_x[k].size(), GetParam().preconditioner_parts) << "system " << k;
-    ASSERT_EQ(together.parts_times_x[k].size(), GetParam().preconditioner_parts) << "system " << k;
+    ASSERT_EQ(alone.parts_times_x[k].size(), preconditioner_parts) << "system " << k;
+    ASSERT_EQ(together.parts_times_x[k].size(), preconditioner_parts) << "system " << k;
     // The multiplier block's parts are summed into one Schur approximation (same units);
     // the slip coupling vanishes up to round-off where nothing slips: each part is compared
     // on the scale of the largest.
     double parts_scale = 0;
     for (const auto& part : alone.parts_times_x[k]) parts_scale = std::max(parts_scale, max_abs(part));
-    for (size_t p = 0; p < GetParam().preconditioner_parts; ++p)
-      EXPECT_LE(max_difference(alone.parts_times_x[k][p], together.parts_times_x[k][p]), kTolerance * parts_scale)
+    for (size_t p = 0; p < preconditioner_parts; ++p) {
+      const auto& held = together.parts_times_x[k][p];
+      EXPECT_GT(std::count_if(held.begin(), held.end(), [](double v) { return !std::isnan(v); }), 0);
+      EXPECT_LE(max_difference(alone.parts_times_x[k][p], held), kTolerance * parts_scale)
           << "system " << k << ", preconditioner part " << p;
+    }
   }
+}
+
+TEST_P(DistributedSystem, EqualsTheOneProcessSystemAtEveryNewtonIteration) {
+  int processes = 1;
+  MPI_Comm_size(PETSC_COMM_WORLD, &processes);
+  ASSERT_EQ(processes, 2) << "run under mpirun -n 2";
+  const SystemProducts alone = solve_recording(PETSC_COMM_SELF, GetParam().scene, GetParam().backend);
+  const SystemProducts together = solve_recording(PETSC_COMM_WORLD, GetParam().scene, GetParam().backend);
+  expect_same_systems(alone, together, GetParam().preconditioner_parts);
+}
+
+// The same on mesh parts (with contact, each part holding the contact surfaces whole): the
+// exact Jacobian of the one-process system, whose entries each part assembles from its own
+// cells and its pairs rebuilt over its space.
+TEST_P(DistributedSystem, OnMeshPartsEqualsTheOneProcessSystemAtEveryNewtonIteration) {
+  int processes = 1;
+  MPI_Comm_size(PETSC_COMM_WORLD, &processes);
+  ASSERT_EQ(processes, 2) << "run under mpirun -n 2";
+  const SystemProducts alone = solve_recording(PETSC_COMM_SELF, GetParam().scene, GetParam().backend);
+  const SystemProducts on_parts = solve_recording(PETSC_COMM_WORLD, GetParam().scene, GetParam().backend, true);
+  EXPECT_LT(on_parts.cells_held, alone.cells_held) << "not a part of the mesh";
+  expect_same_systems(alone, on_parts, GetParam().preconditioner_parts);
 }
 
 // Displacement only, mixed u-p, frictionless and frictional contact, 2D and 3D, self-contact.
