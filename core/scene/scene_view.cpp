@@ -22,7 +22,6 @@ SceneView view_of_part(MPI_Comm comm, const Scene& scene, const ScenePart& part,
   v.space = part.space.get();
   v.problem = &part.problem;
   v.body_of_cell = &part.body_of_cell;
-  v.in_parts = true;
   v.vertex_ids = &part.part.vertex_ids;
   v.n_vertices = part.part.n_global_vertices;
   v.n_cells = part.part.n_global_cells;

@@ -20,7 +20,6 @@ struct SceneView {
   const fem::FieldSpace* space = nullptr;
   const nonlinear::ElasticityProblem* problem = nullptr;
   const std::vector<int>* body_of_cell = nullptr;  // per cell of space's mesh
-  bool in_parts = false;
   const std::vector<int>* vertex_ids = nullptr;  // in parts: each vertex's id in the whole mesh
   // The whole mesh's and space's sizes.
   std::int64_t n_vertices = 0, n_cells = 0, n_linear = 0, n_quadratic = 0, n_pressure = 0;
