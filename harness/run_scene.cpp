@@ -25,9 +25,7 @@ RunScene open_run_scene(MPI_Comm comm, const std::string& name, int level, const
   const int wanted = level >= 0 ? level : run.scene->file_level;
   if (wanted < 0 || wanted > 4)
     throw Error(fmt::format("scene '{}': mesh level {} outside 0..4", run.scene->name, wanted), ErrorKind::Input);
-  // Parts that hold contact surfaces are not refined yet: such a scene is divided at its level.
-  const bool contact = !run.scene->problem.constraints.empty();
-  if (wanted > 0 && (contact || !run.scene->levels_by_refinement)) run.scene = open_scene(name, wanted, overrides);
+  if (wanted > 0 && !run.scene->levels_by_refinement) run.scene = open_scene(name, wanted, overrides);
   run.refined_in_parts = run.scene->level == wanted ? 0 : wanted;
   run.part = scene::divide_scene(comm, *run.scene, run.refined_in_parts);
   run.view.emplace(scene::view_of_part(comm, *run.scene, *run.part, wanted));

@@ -3,10 +3,10 @@
 // asked (--whole-mesh), every process builds the whole scene at the level asked. Otherwise
 // each process holds only its part of the mesh and the space and problem over it
 // (scene::divide_scene; with contact, the contact surfaces whole besides); when the scene's
-// levels are uniform refinements of level 0 and it has no contact, level 0 is divided and
-// the parts refined where they are, so that the finer mesh is never whole on any process
-// (the same mesh as the whole level; its cells are split as level 0's were). A scene with
-// contact is built whole at its level and then divided. Once divided, the whole mesh is freed.
+// levels are uniform refinements of level 0, level 0 is divided and the parts refined where
+// they are, so that the finer mesh is never whole on any process (the same mesh as the whole
+// level; its cells are split as level 0's were). A scene whose levels are re-meshed is built
+// whole at its level and then divided. Once divided, the whole mesh is freed.
 #include <memory>
 #include <optional>
 #include <string>

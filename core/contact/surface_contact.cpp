@@ -501,6 +501,7 @@ SurfaceContact::SurfaceContact(std::string name, const fem::FieldSpace& space, i
     : ContactPair(std::move(name), space, slave_tag, settings),
       space_(space),
       master_tag_(master_tag),
+      requested_search_radius_(search_radius),
       search_radius_(search_radius) {
   if (space.dim() != 2 && space.dim() != 3)
     throw Error(fmt::format("contact '{}': a deformable master needs a 2D or 3D mesh", this->name()));

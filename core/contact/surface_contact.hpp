@@ -76,7 +76,7 @@ public:
     return {{"slave", slave_tag_}, {"master", master_tag_}};
   }
   std::unique_ptr<nonlinear::MultiplierConstraint> over(const fem::FieldSpace& space) const override {
-    return std::make_unique<SurfaceContact>(name(), space, slave_tag_, master_tag_, settings_, search_radius_);
+    return std::make_unique<SurfaceContact>(name(), space, slave_tag_, master_tag_, settings_, requested_search_radius_);
   }
 
 private:
@@ -100,6 +100,7 @@ private:
   const fem::FieldSpace& space_;
   std::vector<SurfaceFacet> slave_facets_, master_facets_;
   int master_tag_;
+  double requested_search_radius_;  // as given: <= 0 derives it from the space's master facets
   double search_radius_;
 
   // What the last evaluation without derivatives found (at ContactPair's last evaluated

@@ -11,7 +11,7 @@
 // edges included). A level's numbering thus does not depend on the process count, and a mesh
 // need only be whole at the coarse level that is partitioned. (Scenes are solved on parts:
 // scene::divide_scene, which `stiction solve` uses on several processes; with contact a
-// part also holds the contact surfaces whole, and is not refined yet.)
+// part also holds the contact surfaces whole, at every level.)
 #include <vector>
 
 #include <mpi.h>
@@ -56,8 +56,8 @@ LocalMesh local_part(const Mesh& whole, const std::vector<int>& cell_owner, int 
                      const std::vector<int>& surface_tags = {});
 
 // One uniform refinement of every process's part (collective over comm): the children of a
-// cell stay with its owner. Parts that hold surfaces whole (surface_tags) are refused: their
-// surface cells' children are not sent yet.
+// cell stay with its owner. A part that holds surfaces whole (surface_tags) holds them whole
+// refined: the owner of a cell on them sends its children to every process.
 LocalMesh refine_parts(MPI_Comm comm, const LocalMesh& part);
 
 }  // namespace stiction::mesh

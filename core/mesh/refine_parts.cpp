@@ -148,11 +148,20 @@ std::vector<std::vector<int>> facets_of_own_cells(const LocalMesh& part) {
   return of_cell;
 }
 
+// Whether each own cell has a facet on one of the surfaces the part holds whole: every
+// process holds such a cell's children on those surfaces, so its owner sends them to all.
+std::vector<char> own_cells_on_surfaces(const LocalMesh& part, const std::vector<std::vector<int>>& facets_of_cell) {
+  std::vector<char> on(static_cast<size_t>(part.n_own_cells), 0);
+  const auto& tags = part.surface_tags;
+  for (int c = 0; c < part.n_own_cells; ++c)
+    for (int f : facets_of_cell[c])
+      if (std::find(tags.begin(), tags.end(), part.mesh.facet_tags[f]) != tags.end()) on[c] = 1;
+  return on;
+}
+
 }  // namespace
 
 LocalMesh refine_parts(MPI_Comm comm, const LocalMesh& part) {
-  if (!part.surface_tags.empty())
-    throw Error("refine_parts: a part that holds surfaces whole cannot be refined yet", ErrorKind::Internal);
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
@@ -161,7 +170,9 @@ LocalMesh refine_parts(MPI_Comm comm, const LocalMesh& part) {
   // Refining the whole part numbers its children and new vertices locally and computes
   // their coordinates and curved edges as mesh::refine does on the whole mesh; the own
   // cells' children then take their global ids, and the ghosts' children are dropped: their
-  // owners send them.
+  // owners send them. That holds for the cells on the surfaces held whole too: away from the
+  // own cells a part lacks some parents around their edges, which the curved-edge values of
+  // their children depend on, while their owner has them all.
   Renumbering g;
   const Mesh fine = refine(in_global_order(part, g.position));
   const GlobalEdges edges = global_edge_ids(comm, part, build_edges(coarse));
@@ -172,10 +183,15 @@ LocalMesh refine_parts(MPI_Comm comm, const LocalMesh& part) {
 
   const auto holders = ghost_holders(part);
   const auto facets_of_cell = facets_of_own_cells(part);
+  const auto on_surfaces = own_cells_on_surfaces(part, facets_of_cell);
   Sink mine;
   std::vector<Sink> outgoing(size);
   for (int c = 0; c < part.n_own_cells; ++c) {
-    for (int dest : holders[c]) add_children(part, fine, g, c, facets_of_cell, outgoing[dest]);
+    std::set<int> destinations = holders[c];
+    if (on_surfaces[c])
+      for (int p = 0; p < size; ++p)
+        if (p != rank) destinations.insert(p);
+    for (int dest : destinations) add_children(part, fine, g, c, facets_of_cell, outgoing[dest]);
     add_children(part, fine, g, c, facets_of_cell, mine);
   }
   std::vector<std::vector<int>> out_ints(size);
@@ -184,7 +200,7 @@ LocalMesh refine_parts(MPI_Comm comm, const LocalMesh& part) {
     if (dest != rank) pack(outgoing[dest].records, out_ints[dest], out_reals[dest]);
   unpack(concatenated(all_to_all(comm, out_ints, MPI_INT)), concatenated(all_to_all(comm, out_reals, MPI_DOUBLE)), mine.records);
 
-  LocalMesh finer = number_part(mine.records, coarse, rank);
+  LocalMesh finer = number_part(mine.records, coarse, rank, part.surface_tags);
   finer.n_global_vertices = part.n_global_vertices + edges.n_global;
   finer.n_global_cells = part.n_global_cells * g.children;
   finer.n_global_facets = part.n_global_facets * g.facet_children;

@@ -1,6 +1,5 @@
 #include "scene/scene_part.hpp"
 
-#include "common/error.hpp"
 #include "fem/mesh_partition.hpp"
 #include "fem/part_numbering.hpp"
 
@@ -11,9 +10,6 @@ std::unique_ptr<ScenePart> divide_scene(MPI_Comm comm, const Scene& scene, int l
   std::vector<int> surface_tags;
   for (const auto* c : scene.problem.constraints)
     for (const auto& [role, tag] : c->surfaces()) surface_tags.push_back(tag);
-  if (!surface_tags.empty() && levels > 0)
-    throw Error("scene '" + scene.name + "': a scene with contact is divided at its own level (parts that hold "
-                "the contact surfaces are not refined yet)", ErrorKind::Input);
   const fem::FieldSpace& whole = *scene.space;
   const fem::MeshPartition partition = fem::partition_cells(comm, scene.mesh);
   auto out = std::make_unique<ScenePart>();

@@ -15,8 +15,9 @@
 // With contact, every process evaluates the contact pairs whole (as on the whole mesh): each
 // part also holds the contact surfaces whole (the cells on them as ghosts), the pairs are
 // rebuilt over the part's space and their multipliers are the part's unknowns after its
-// dofs, owned by their slave vertex's owner. Such a scene is divided at its own level (its
-// parts are not refined yet).
+// dofs, owned by their slave vertex's owner. Refined in parts, a part holds the refined
+// surfaces whole, and the pairs (made by the scene at level 0) are rebuilt over the finer
+// part's space as the scene would make them at that level.
 #include <memory>
 #include <string>
 #include <vector>

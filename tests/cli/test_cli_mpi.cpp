@@ -64,6 +64,7 @@ protected:
     if (geteuid() == 0) launcher += " --allow-run-as-root";
     return CliRun::of_command(launcher + " " + shell_quote(STICTION_BINARY), args, dir_);
   }
+  void expect_level_one_refined_in_parts(const std::string& scene, bool contact) const;
 
   std::string mpirun_;
   fs::path dir_;
@@ -364,16 +365,16 @@ TEST_F(StictionUnderMpirun, EachProcessWritesItsPieceOfTheSolutionAndRankZeroJoi
   }
 }
 
-// Without contact each process holds only its part of the mesh, with the space and Newton
-// state over it. cook-membrane-2d's levels are uniform refinements of level 0, so level 0 is
-// divided and the parts refined: level 1 on two processes ends where the whole level-1 mesh
-// on one process does (the same Newton iterations, forces to 1e-8), and the VTU pieces join
-// into its solution. With --whole-mesh every process holds the whole mesh (the path runs
-// with contact take), to the same result.
-TEST_F(StictionUnderMpirun, SceneWithoutContactRunsOnMeshPartsRefinedInParts) {
+// Each process holds only its part of the mesh, with the space and Newton state over it
+// (and, with contact, the contact surfaces whole). cook-membrane-2d's and sliding-block-2d's
+// levels are uniform refinements of level 0, so level 0 is divided and the parts refined:
+// level 1 on two processes ends where the whole level-1 mesh on one process does (the same
+// Newton iterations, forces to 1e-8), and the VTU pieces join into its solution. With
+// --whole-mesh every process holds the whole mesh, to the same result.
+void StictionUnderMpirun::expect_level_one_refined_in_parts(const std::string& scene, bool contact) const {
   const fs::path one = dir_ / "one", parts = dir_ / "parts", whole = dir_ / "whole";
   auto args = [&](const fs::path& out, bool whole_mesh) {
-    std::vector<std::string> a{"solve", "cook-membrane-2d", "--level", "1", "--quick", "--quiet", "--out", out.string()};
+    std::vector<std::string> a{"solve", scene, "--level", "1", "--quick", "--quiet", "--out", out.string()};
     if (whole_mesh) a.insert(a.end(), {"--whole-mesh", "--no-vtu"});
     return a;
   };
@@ -382,8 +383,9 @@ TEST_F(StictionUnderMpirun, SceneWithoutContactRunsOnMeshPartsRefinedInParts) {
   ASSERT_EQ(r2.exit_code, 0) << r2.err;
   ASSERT_EQ(r3.exit_code, 0) << r3.err;
   const std::string in_parts = stiction::test::read_file(parts / "steps.csv");
-  EXPECT_NE(in_parts.find("at level 0, each part then refined to level 1 where it is; each holds its part of the mesh"),
-            std::string::npos)
+  const std::string held = contact ? "each holds its part of the mesh and the contact surfaces whole"
+                                   : "each holds its part of the mesh, with";
+  EXPECT_NE(in_parts.find("at level 0, each part then refined to level 1 where it is; " + held), std::string::npos)
       << in_parts.substr(0, 2000);
   EXPECT_NE(in_parts.find("# mesh: "), std::string::npos);
   const std::string one_header = stiction::test::read_file(one / "steps.csv");
@@ -395,7 +397,15 @@ TEST_F(StictionUnderMpirun, SceneWithoutContactRunsOnMeshPartsRefinedInParts) {
   EXPECT_NE(stiction::test::read_file(whole / "steps.csv").find("the mesh whole on each"), std::string::npos);
   expect_same_newton_path(one, parts);
   expect_same_newton_path(one, whole);
-  expect_pieces_join_into_the_whole(one, parts, false);
+  expect_pieces_join_into_the_whole(one, parts, contact);
+}
+
+TEST_F(StictionUnderMpirun, SceneWithoutContactRunsOnMeshPartsRefinedInParts) {
+  expect_level_one_refined_in_parts("cook-membrane-2d", false);
+}
+
+TEST_F(StictionUnderMpirun, SceneWithContactRunsOnMeshPartsRefinedInParts) {
+  expect_level_one_refined_in_parts("sliding-block-2d", true);
 }
 
 // A checkpoint written on two processes holds the whole state (gathered on rank 0), in the

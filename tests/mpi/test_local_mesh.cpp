@@ -1,7 +1,8 @@
 // Run under `mpirun -n 2` with the other distributed tests. A mesh divided among the
 // processes and refined in parts (mesh::refine_parts) is the refined whole mesh divided the
 // same way: the same global ids, coordinates bit for bit, tagged facets and curved edges, on
-// curved 2D and 3D scenes and on the block with strips (self-contact facets in its grooves);
+// curved 2D and 3D scenes and on the block with strips (self-contact facets in its grooves),
+// also when the parts hold the contact surfaces whole;
 // a part's edges, nodes and pressure dofs get the whole mesh's numbers; and a layout over
 // the part assembles the whole mesh's residual and tangent.
 #include <gtest/gtest.h>
@@ -40,8 +41,20 @@ using namespace stiction;
 struct RefinedScene {
   const char* name;
   int levels;
+  bool hold_surfaces;  // the parts hold the contact surfaces whole
 };
-std::ostream& operator<<(std::ostream& os, const RefinedScene& s) { return os << s.name << " to level " << s.levels; }
+std::ostream& operator<<(std::ostream& os, const RefinedScene& s) {
+  return os << s.name << " to level " << s.levels << (s.hold_surfaces ? ", holding the contact surfaces" : "");
+}
+
+// The facet tags of a scene's contact surfaces (slave and master of every pair).
+std::vector<int> contact_surface_tags(const scene::Scene& s) {
+  std::vector<int> tags;
+  for (const auto* c : s.problem.constraints)
+    for (const auto& [role, tag] : c->surfaces()) tags.push_back(tag);
+  return tags;
+}
+
 
 // Every edge of the part, ghosts' included, has the id the whole mesh's edge list gives it.
 void expect_whole_edge_numbering(const mesh::LocalMesh& part, const mesh::Mesh& whole) {
@@ -83,13 +96,15 @@ class RefinedInParts : public ::testing::TestWithParam<RefinedScene> {};
 
 // No ASSERT before a collective: a process that returned early would leave the other in it.
 TEST_P(RefinedInParts, IsTheRefinedWholeMeshDivided) {
-  const auto [name, levels] = GetParam();
+  const auto [name, levels, hold_surfaces] = GetParam();
   const auto scene = scene::build_scene(harness::builtin_scenes().at(name), name, ".", 0);
+  const std::vector<int> surfaces = hold_surfaces ? contact_surface_tags(*scene) : std::vector<int>{};
+  EXPECT_EQ(surfaces.empty(), !hold_surfaces);
   mesh::Mesh whole = scene->mesh;
   const fem::MeshPartition partition = fem::partition_cells(PETSC_COMM_WORLD, whole);
   EXPECT_EQ(partition.size, 2) << "run under mpirun -n 2";
   std::vector<int> owner = partition.cell_owner;
-  mesh::LocalMesh part = mesh::local_part(whole, owner, partition.rank);
+  mesh::LocalMesh part = mesh::local_part(whole, owner, partition.rank, surfaces);
   const int children = whole.dim == 2 ? 4 : 8;
   for (int level = 1; level <= levels; ++level) {
     part = mesh::refine_parts(PETSC_COMM_WORLD, part);
@@ -98,10 +113,15 @@ TEST_P(RefinedInParts, IsTheRefinedWholeMeshDivided) {
     for (int c = 0; c < whole.n_cells(); ++c) child_owner[c] = owner[c / children];
     owner = std::move(child_owner);
     SCOPED_TRACE("level " + std::to_string(level));
-    test::expect_same_part(part, mesh::local_part(whole, owner, partition.rank));
+    test::expect_same_part(part, mesh::local_part(whole, owner, partition.rank, surfaces));
     expect_whole_edge_numbering(part, whole);
   }
-  EXPECT_TRUE(part.cell_ids == own_cells_and_vertex_layer(whole, owner, partition.rank));
+  // Without surfaces the part is its own cells and their vertex layer; holding them, it
+  // also holds surface cells beyond the layer (as local_part makes it: checked above).
+  const std::vector<int> layer = own_cells_and_vertex_layer(whole, owner, partition.rank);
+  if (hold_surfaces) EXPECT_GT(part.cell_ids.size(), layer.size());
+  else EXPECT_TRUE(part.cell_ids == layer);
+  EXPECT_EQ(part.surface_tags, surfaces);
   // The parts are parts: each holds a ghost layer and less than the whole mesh, and their
   // own cells add up to it.
   EXPECT_GT(part.mesh.n_cells(), part.n_own_cells);
@@ -111,23 +131,19 @@ TEST_P(RefinedInParts, IsTheRefinedWholeMeshDivided) {
   EXPECT_EQ(own_total, whole.n_cells());
 }
 
-const RefinedScene kRefinedScenes[] = {{"ironing-2d", 2}, {"hertz-spheres-3d", 2}, {"block-strips", 1}};
+// ironing-2d's indenter and the spheres have curved edges on their contact surfaces.
+const RefinedScene kRefinedScenes[] = {{"ironing-2d", 2, false},      {"hertz-spheres-3d", 2, false},
+                                       {"block-strips", 1, false},    {"ironing-2d", 2, true},
+                                       {"hertz-spheres-3d", 2, true}, {"block-strips", 1, true}};
 
-INSTANTIATE_TEST_SUITE_P(Scenes, RefinedInParts, ::testing::ValuesIn(kRefinedScenes),
-                         [](const auto& info) { return test::identifier(info.param.name); });
+INSTANTIATE_TEST_SUITE_P(Scenes, RefinedInParts, ::testing::ValuesIn(kRefinedScenes), [](const auto& info) {
+  return test::identifier(std::string(info.param.name) + (info.param.hold_surfaces ? "_holding_surfaces" : ""));
+});
 
 // A part's own space numbers its nodes (vertices, then P2 edges) and its pressure dofs as
 // the whole mesh's space does, and owns and PETSc-numbers its unknowns as the whole mesh's
 // layout does.
 class NumberedInParts : public ::testing::TestWithParam<const char*> {};
-
-// The facet tags of a scene's contact surfaces (slave and master of every pair).
-std::vector<int> contact_surface_tags(const scene::Scene& s) {
-  std::vector<int> tags;
-  for (const auto* c : s.problem.constraints)
-    for (const auto& [role, tag] : c->surfaces()) tags.push_back(tag);
-  return tags;
-}
 
 // A scene's level-0 mesh divided between the processes, each with its part's own space (its
 // pressure where the whole space has one) and that space's whole-space numbering; with

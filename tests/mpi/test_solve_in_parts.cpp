@@ -4,7 +4,8 @@
 // over its space) takes the whole-mesh distributed run's Newton path: the same
 // Newton iterations per load step, the same Krylov iterations, and the same converged
 // state and forces, to 1e-8 relative; and one whose coarse mesh alone was whole, refined in
-// parts, solves the finer level as the whole mesh does.
+// parts (with contact, its surfaces whole on every part), solves the finer level as the
+// whole mesh does.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,7 +15,6 @@
 #include <vector>
 
 #include "builtin_scenes.hpp"
-#include "common/error.hpp"
 #include "nonlinear/newton.hpp"
 #include "registry.hpp"
 #include "scene/scene_part.hpp"
@@ -125,14 +125,10 @@ TEST_P(SolveRefinedInParts, FollowsTheWholeFinerLevel) {
   expect_same_state(run, whole);
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, SolveRefinedInParts, ::testing::Values("cook-membrane-2d", "cook-membrane-3d"),
+// With contact the parts hold the refined contact surfaces whole (sliding-block-2d: friction
+// on a deformable master; self-contact-2d).
+INSTANTIATE_TEST_SUITE_P(Scenes, SolveRefinedInParts,
+                         ::testing::Values("cook-membrane-2d", "cook-membrane-3d", "sliding-block-2d", "self-contact-2d"),
                          [](const auto& info) { return test::identifier(info.param); });
-
-// Parts that hold the contact surfaces are not refined yet: a scene with contact asked to be
-// refined in parts is refused with a message, not run wrongly.
-TEST(SolveRefinedInParts, RefusesAContactScene) {
-  auto scene = harness::open_scene("hertz-cylinder-2d", 0, {});
-  EXPECT_THROW(scene::divide_scene(PETSC_COMM_WORLD, *scene, 1), Error);
-}
 
 }  // namespace
