@@ -130,8 +130,8 @@ int main(int argc, char** argv) {
                      "print each contact state change per Newton iteration (node, gap, multiplier, position)");
   solve_cmd->add_flag("--quick", solve.quick, "the scene's short version: stop at its load.quick_until");
   solve_cmd->add_flag("--whole-mesh", solve.whole_mesh,
-                      "under mpirun, every process holds the whole mesh (default: each its part, for scenes "
-                      "without contact)");
+                      "under mpirun, every process holds the whole mesh (default: each its part, refined "
+                      "where it is when the scene's levels are refinements of level 0)");
   solve_cmd->add_option("--restart", solve.restart_dir,
                         "continue a failed or killed run from DIR/checkpoint.bin (output appended in DIR unless --out)");
   harness::ReplayOptions replay;

@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Every built-in scene on one process and under `mpirun -n 2`: the same Newton path?
 
-  scripts/two-processes-every-scene.py STICTION OUT_DIR [--solver lu-mumps] [--scenes a,b]
+  scripts/two-processes-every-scene.py STICTION OUT_DIR [--solver lu-mumps] [--scenes a,b] [--level L]
 
-Runs `stiction solve <scene> --quick --solver S --no-vtu --quiet` alone and under
+Runs `stiction solve <scene> --quick --solver S --no-vtu --quiet [--level L]` alone and under
 `mpirun -n 2` (each run in OUT_DIR/<scene>/np{1,2}), then compares the two steps.csv files
 row by row: Newton iterations, cut-backs and reasons must be the same, and the force
 columns (reactions, tractions, contact forces) are compared by their largest difference over
@@ -50,6 +50,7 @@ def main():
     p.add_argument("out")
     p.add_argument("--solver", default="lu-mumps")
     p.add_argument("--scenes", default="")
+    p.add_argument("--level", type=int, default=None, help="mesh level (default: each scene's own)")
     a = p.parse_args()
     mpirun = ["mpirun", "-n", "2", "--oversubscribe"] + (["--allow-run-as-root"] if os.geteuid() == 0 else [])
     env = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
@@ -61,7 +62,7 @@ def main():
         for n, launcher in ((1, []), (2, mpirun)):
             out = os.path.join(a.out, scene, f"np{n}")
             cmd = launcher + [a.stiction, "solve", scene, "--quick", "--solver", a.solver, "--no-vtu", "--quiet",
-                              "--out", out]
+                              "--out", out] + ([] if a.level is None else ["--level", str(a.level)])
             run = subprocess.run(cmd, env=env, capture_output=True, text=True)
             if run.returncode != 0:
                 print(f"| {scene} | np={n} failed: {run.stderr.strip().splitlines()[-1:]} | | |")
@@ -77,8 +78,9 @@ def main():
         diff = max((abs(float(v) - float(y[k])) for x, y in zip(one, two) for k, v in x.items()
                     if is_force(k) and v and y.get(k)), default=0.0)
         relative = diff / scale if scale > 0 else float("nan")
-        held = next((c.split("(", 1)[1].split(";", 1)[1].strip(" )") for c in comments if c.startswith("# MPI processes")),
-                    "?")
+        # What the header says each process held, after "cells split by <partitioner>".
+        held = next((c.split("(", 1)[1].rstrip(" )").split(" ", 4)[-1].lstrip(";, ") for c in comments
+                     if c.startswith("# MPI processes")), "?")
         newton = lambda rows: sum(int(r["newton_iterations"]) for r in rows)
         print(f"| {scene} | {newton(one)} / {newton(two)}{'' if same_path else ' (path differs)'} | {relative:.1e} | {held} |")
         failed |= not same_path or not relative <= 1e-8

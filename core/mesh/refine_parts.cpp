@@ -5,7 +5,6 @@
 #include <set>
 
 #include "common/all_to_all.hpp"
-#include "common/error.hpp"
 #include "mesh/part_records.hpp"
 
 namespace stiction::mesh {

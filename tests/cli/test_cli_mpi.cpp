@@ -313,9 +313,10 @@ void expect_pieces_join_into_the_whole(const fs::path& one, const fs::path& two,
       const auto at = point_at.find({std::llround(x[k] * 1e9), std::llround(x[k + 1] * 1e9)});
       ASSERT_NE(at, point_at.end()) << name << ": point " << k / 3 << " is not a point of the whole mesh";
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(pu[k + c], u[at->second * 3 + c], 1e-8 * u_max) << name << " point " << k / 3;
-      if (contact)
+      if (contact) {
         EXPECT_EQ(piece.array("contact_state").values[k / 3], whole.array("contact_state").values[at->second])
             << name << " point " << k / 3;
+      }
     }
     const auto piece_centroids = centroids(piece);
     const auto& piece_mises = piece.array("von_mises").values;
@@ -436,9 +437,10 @@ TEST_F(StictionUnderMpirun, CheckpointOfTwoProcessesRestartsOnAnyProcessCount) {
     ASSERT_GT(force_scale, 0);
     EXPECT_EQ(a.back().at("newton_iterations"), b.back().at("newton_iterations")) << "restarted on " << processes;
     for (const auto& [name, value] : a.back())
-      if (is_force_column(name))
+      if (is_force_column(name)) {
         EXPECT_NEAR(std::stod(value), std::stod(b.back().at(name)), 1e-8 * force_scale)
             << name << ", restarted on " << processes;
+      }
   }
 }
 
