@@ -11,7 +11,8 @@ schur-amg run's last pseudo-time, failed attempts included. A run chained by --r
 shares the machine with other work now and then: a Krylov solve that took more than
 PAUSED_SECONDS per Krylov iteration (set-up and solve) is taken as paused and left out, and
 the count of solves kept is printed. Direct solves (one "iteration") are not filtered. Also
-printed: level 2's lu-mumps per solve over its whole run.
+printed: level 2's lu-mumps per solve over its whole run. The table counts the solves on one
+process; a sitting on two processes (its header says "# MPI processes: 2") is printed apart.
 """
 import csv
 import sys
@@ -34,8 +35,17 @@ SCENES = {  # scene -> level -> solver -> iterations.csv, relative to REPORTS
 }
 
 
-def solves(path):
-    lines = [line for line in path.read_text().splitlines() if line and not line.startswith("#")]
+def solves(path, processes=1):
+    """The rows of an iterations.csv solved on `processes` MPI processes. Each sitting of a
+    chained run starts with its header comments; "# MPI processes: N" says it ran on N."""
+    lines, ran_on = [], 1
+    for line in path.read_text().splitlines():
+        if line.startswith("# command:"):
+            ran_on = 1
+        elif line.startswith("# MPI processes:"):
+            ran_on = int(line.split(":")[1].split()[0])
+        elif line and not line.startswith("#") and (ran_on == processes or line.startswith("step")):
+            lines.append(line)
     return [row for row in csv.DictReader(lines) if row.get("step") != "step"]  # a restart repeats the header
 
 
@@ -69,6 +79,12 @@ def main():
             notes.append(f"{scene} level {level}: schur-amg {amg[0]} of {amg[1]} solves kept, lu-mumps {lu[0]}")
         whole = figures(solves(reports / levels[2]["lu-mumps"]), float("inf"))
         notes.append(f"{scene} level 2, lu-mumps over its whole run: {whole[3]:.2f} s per solve ({whole[0]} solves)")
+        two = solves(reports / levels[2]["schur-amg"], processes=2)
+        if two:
+            amg = figures(two, float("inf"))
+            notes.append(f"{scene} level 2, schur-amg on two processes (t = {float(two[0]['time']):g} to "
+                         f"{float(two[-1]['time']):g}, left out above): {amg[2]:.1f} Krylov iterations and "
+                         f"{amg[3]:.2f} s per solve ({amg[0]} of {len(two)} solves kept)")
     print()
     print("\n".join(notes))
 
