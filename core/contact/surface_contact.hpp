@@ -75,9 +75,12 @@ public:
   std::vector<std::pair<std::string, int>> surfaces() const override {
     return {{"slave", slave_tag_}, {"master", master_tag_}};
   }
+  // The same pair over a finer space: a requested radius is kept, a default one is derived
+  // again from the finer space's master facets.
   std::unique_ptr<nonlinear::MultiplierConstraint> over(const fem::FieldSpace& space) const override {
     return std::make_unique<SurfaceContact>(name(), space, slave_tag_, master_tag_, settings_, requested_search_radius_);
   }
+  double search_radius() const { return search_radius_; }
 
 private:
   void compute_kinematics(double t, fem::StateView u, const double* lambda, fem::ResidualView r_u,

@@ -195,6 +195,27 @@ TEST(SurfaceContact, JacobianMatchesFiniteDifferencesOnACurvedMaster) {
   expect_exact_jacobian(pair, s->space->n_dofs(), u0, u, lambda);
 }
 
+// Over a finer space (a scene refined in parts) a pair keeps the search radius it was
+// given and derives a default one again from the finer master's facets, as the scene's own
+// pair at that level does.
+TEST(SurfaceContact, OverAFinerSpaceKeepsAGivenSearchRadiusAndDerivesADefaultOne) {
+  auto coarse = scene::build_scene(kBlockOnBlock, "block-on-block", ".", 0);
+  auto fine = scene::build_scene(kBlockOnBlock, "block-on-block", ".", 1);
+  ASSERT_TRUE(coarse->levels_by_refinement);
+  const auto& coarse_pair = dynamic_cast<const SurfaceContact&>(*coarse->contacts.at(0));
+  const auto& fine_pair = dynamic_cast<const SurfaceContact&>(*fine->contacts.at(0));
+  const auto rebuilt = coarse_pair.over(*fine->space);
+  const double derived = dynamic_cast<const SurfaceContact&>(*rebuilt).search_radius();
+  EXPECT_EQ(derived, fine_pair.search_radius());
+  EXPECT_LT(derived, 0.75 * coarse_pair.search_radius());  // refinement halves the master's facets
+
+  const std::string given = test::replaced(kBlockOnBlock, "friction = 0.4", "friction = 0.4\nsearch_radius = 0.35");
+  auto coarse_given = scene::build_scene(given, "block-on-block-given-radius", ".", 0);
+  ASSERT_EQ(dynamic_cast<const SurfaceContact&>(*coarse_given->contacts.at(0)).search_radius(), 0.35);
+  const auto rebuilt_given = coarse_given->contacts.at(0)->over(*fine->space);
+  EXPECT_EQ(dynamic_cast<const SurfaceContact&>(*rebuilt_given).search_radius(), 0.35);
+}
+
 // Evaluated through scattered storage (a process's owned and ghost unknowns with a map), a
 // pair gives exactly the forces, rows and Jacobian it gives on whole vectors, the previous
 // increment's state (the slip increments S_i) read through the map it was given in.
