@@ -1,7 +1,6 @@
 #include "solve_command.hpp"
 
 #include <fmt/format.h>
-#include <fmt/os.h>
 
 #include <chrono>
 #include <cmath>
@@ -10,18 +9,15 @@
 #include <fstream>
 #include <limits>
 
-#include "builtin_scenes.hpp"
 #include "checkpoint.hpp"
 #include "common/error.hpp"
-#include "common/process_memory.hpp"
 #include "contact/contact_state.hpp"
 #include "ksp_solver.hpp"
 #include "registry.hpp"
-#include "result_tables.hpp"
+#include "run_output.hpp"
 #include "run_scene.hpp"
 #include "run_metrics.hpp"
 #include "system_record.hpp"
-#include "vtu_writer.hpp"
 
 namespace stiction::harness {
 namespace {
@@ -73,6 +69,54 @@ std::string describe_processes(const RunScene& run, int processes, const std::st
                      run.part->contacts.empty() ? "" : " and the contact surfaces whole");
 }
 
+// The command line's Newton settings over the scene's; returns where the Krylov tolerance
+// comes from. Its precedence: --krylov-rtol, then a -<backend>_ksp_rtol given on the
+// command line, then the scene's newton.krylov_rtol, then the backend's options file.
+std::string apply_newton_options(const SolveOptions& o, nonlinear::NewtonSettings& newton) {
+  if (!o.forcing.empty()) newton.forcing = nonlinear::forcing_from_string(o.forcing);
+  if (o.newton_rtol >= 0) newton.rtol = o.newton_rtol;
+  if (o.krylov_rtol >= 0) {
+    newton.krylov_rtol = o.krylov_rtol;
+    return "--krylov-rtol";
+  }
+  if (o.petsc_options.find("-" + solvers::options_prefix(o.solver) + "ksp_rtol ") != std::string::npos)
+    newton.krylov_rtol = 0;
+  return "scene";
+}
+
+// The checkpoint of --restart, checked against the scene and level being run.
+Checkpoint read_resume(const SolveOptions& o, const RunScene& run) {
+  Checkpoint resume = read_checkpoint(PETSC_COMM_WORLD, o.restart_dir + "/checkpoint.bin");
+  if (resume.scene != run.scene->name || resume.level != run.level())
+    throw Error(fmt::format("checkpoint in '{}' is of scene '{}' level {}, not '{}' level {}", o.restart_dir,
+                            resume.scene, resume.level, run.scene->name, run.level()));
+  return resume;
+}
+
+// The --metrics record; a restarted run's record continues the earlier segments'.
+std::unique_ptr<RunRecorder> make_recorder(const SolveOptions& o, const RunScene& run, int processes,
+                                           const Checkpoint* resume, std::chrono::steady_clock::time_point t_start) {
+  // The options the backend ran with: its defaults, then PETSC_OPTIONS, then the command line's.
+  const char* environment = std::getenv("PETSC_OPTIONS");
+  const std::string from_environment =
+      environment && *environment ? fmt::format("# PETSC_OPTIONS\n{}\n", environment) : std::string();
+  RunSummary base{o.solver, solvers::default_options(o.solver) + from_environment + o.petsc_options};
+  base.processes = processes;
+  return std::make_unique<RunRecorder>(
+      o.metrics_path, *run.view, base, PETSC_COMM_WORLD,
+      resume ? read_earlier_segments(o.metrics_path, run.scene->name, run.level(), o.solver, resume->state.step)
+             : std::nullopt,
+      t_start);
+}
+
+void print_step_line(const nonlinear::StepResult& r, int n_steps) {
+  fmt::print(stderr, "step {}/{}{}: t = {:.6g}, {} after {} Newton iterations, residual {:.3e} (reference {:.3e}), "
+             "{:.2f} s{}\n",
+             r.step, n_steps, r.cut > 0 ? fmt::format(" (increment / {})", 1 << r.cut) : "", r.time,
+             nonlinear::to_string(r.reason), r.iterations.size(), r.final_residual, r.reference_residual,
+             r.wall_seconds, r.retried ? "; retried over half the increment" : "");
+}
+
 }  // namespace
 
 void run_solve(const SolveOptions& o, const RunInfo& info) {
@@ -88,28 +132,12 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   RunScene run = open_run_scene(PETSC_COMM_WORLD, o.scene, o.level, o.overrides, o.whole_mesh);
   auto& scene = run.scene;
   const scene::SceneView& view = *run.view;
-  if (!o.forcing.empty()) scene->newton.forcing = nonlinear::forcing_from_string(o.forcing);
-  if (o.newton_rtol >= 0) scene->newton.rtol = o.newton_rtol;
-  // Precedence of the Krylov tolerance: --krylov-rtol, then a -<backend>_ksp_rtol given on
-  // the command line, then the scene's newton.krylov_rtol, then the backend's options file.
-  std::string krylov_rtol_origin = "scene";
-  if (o.krylov_rtol >= 0) {
-    scene->newton.krylov_rtol = o.krylov_rtol;
-    krylov_rtol_origin = "--krylov-rtol";
-  } else if (o.petsc_options.find("-" + solvers::options_prefix(o.solver) + "ksp_rtol ") != std::string::npos) {
-    scene->newton.krylov_rtol = 0;
-  }
+  const std::string krylov_rtol_origin = apply_newton_options(o, scene->newton);
   auto solver = solvers::create_solver(o.solver, PETSC_COMM_WORLD);
   const bool restart = !o.restart_dir.empty();
   std::string out_dir = o.out_dir.empty() ? fmt::format("out/{}-L{}", scene->name, run.level()) : o.out_dir;
   if (restart && o.out_dir.empty()) out_dir = o.restart_dir;
-  Checkpoint resume;
-  if (restart) {
-    resume = read_checkpoint(PETSC_COMM_WORLD, o.restart_dir + "/checkpoint.bin");
-    if (resume.scene != scene->name || resume.level != run.level())
-      throw Error(fmt::format("checkpoint in '{}' is of scene '{}' level {}, not '{}' level {}", o.restart_dir,
-                              resume.scene, resume.level, scene->name, run.level()));
-  }
+  const Checkpoint resume = restart ? read_resume(o, run) : Checkpoint{};
   std::error_code ec;
   if (writer) std::filesystem::create_directories(out_dir, ec);
   if (ec) throw Error(fmt::format("cannot create output directory '{}': {}", out_dir, ec.message()));
@@ -123,25 +151,12 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   if (processes > 1) header += describe_processes(run, processes, newton.partition().partitioner);
   const bool verbose = !o.quiet && writer;
   if (verbose) fmt::print(stderr, "{}", header);
-
-  std::unique_ptr<StepTable> table;
-  std::unique_ptr<IterationTable> iteration_table;
-  std::unique_ptr<ContactTable> contact_table;
-  if (scene->output.csv && writer) {
-    if (!view.problem->constraints.empty())
-      contact_table = std::make_unique<ContactTable>(out_dir + "/contact.csv", header, view.dim(), restart);
-    table = std::make_unique<StepTable>(out_dir + "/steps.csv", header, view, restart);
-    iteration_table = std::make_unique<IterationTable>(out_dir + "/iterations.csv", header,
-                                                       !view.problem->constraints.empty(), restart);
-  }
-  std::unique_ptr<PvdCollection> pvd;
-  if (writer) pvd = std::make_unique<PvdCollection>(out_dir + "/solution.pvd");
+  RunOutput output(run, newton, out_dir, header, restart, o.write_vtu);
   if (restart) {
     newton.restore(resume.state);
     newton.set_linear_tally(resume.tally);
     newton.set_cut_back(resume.cut_back);
   }
-  const int first_step = restart ? resume.state.step + 1 : 1;
   if (!o.record_dir.empty()) {
     const RecordContext context{scene->name, run.level(), o.solver, info};
     newton.set_system_observer([&, context](const nonlinear::NewtonSystem& sys, Vec du,
@@ -151,64 +166,21 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   }
   if (o.trace_contact && writer) newton.set_state_change_observer(
       [&view](const nonlinear::QuasiStaticSolver::StateChange& c) { print_state_change(c, view); });
-  double until = o.until >= 0 ? o.until : std::numeric_limits<double>::infinity();
-  if (o.quick) until = std::min(until, scene->quick_until);
-  const int last_step = scene->problem.step_reaching(until);
-  // A load step's VTU: written by rank 0, or on several processes one piece per process
-  // (its own cells) and a PVTU by rank 0 that joins them.
-  const auto write_step_output = [&](const nonlinear::StepResult& r) {
-    const fem::StateView u = newton.held_displacement();
-    const std::string stem = fmt::format("step-{:03d}", r.step);
-    if (processes == 1) {
-      write_vtu(out_dir + "/" + stem + ".vtu", *scene, u, newton.multipliers(), r.time);
-      pvd->add(r.time, stem + ".vtu");
-      return;
-    }
-    write_vtu_piece(fmt::format("{}/{}-p{}.vtu", out_dir, stem, rank), view, u, newton.multipliers(), r.time,
-                    newton.partition().owned_cells, rank);
-    if (!writer) return;
-    std::vector<std::string> pieces;
-    for (int k = 0; k < processes; ++k) pieces.push_back(fmt::format("{}-p{}.vtu", stem, k));
-    write_pvtu(out_dir + "/" + stem + ".pvtu", view, newton.multipliers(), pieces);
-    pvd->add(r.time, stem + ".pvtu");
-  };
   std::unique_ptr<RunRecorder> record;
   if (!o.metrics_path.empty()) {
-    // The options the backend ran with: its defaults, then PETSC_OPTIONS, then the command line's.
-    const char* environment = std::getenv("PETSC_OPTIONS");
-    const std::string from_environment =
-        environment && *environment ? fmt::format("# PETSC_OPTIONS\n{}\n", environment) : std::string();
-    RunSummary base{o.solver, solvers::default_options(o.solver) + from_environment + o.petsc_options};
-    base.processes = processes;
-    record = std::make_unique<RunRecorder>(
-        o.metrics_path, view, base, PETSC_COMM_WORLD,
-        restart ? read_earlier_segments(o.metrics_path, scene->name, run.level(), o.solver, resume.state.step)
-                : std::nullopt,
-        t_start);
+    record = make_recorder(o, run, processes, restart ? &resume : nullptr, t_start);
     newton.set_iteration_observer(
         [&](int step, double t, const nonlinear::NewtonIteration& it) { record->add_iteration(step, t, it); });
   }
+  double until = o.until >= 0 ? o.until : std::numeric_limits<double>::infinity();
+  if (o.quick) until = std::min(until, scene->quick_until);
+  const int first_step = restart ? resume.state.step + 1 : 1;
   auto results = newton.run([&](const nonlinear::StepResult& r) {
-    if (table) table->add(r, view);
-    if (iteration_table) iteration_table->add(r);
+    output.add_rows(r);
     if (record) record->add(r);  // before the checkpoint
-    if (r.completes_step) {
-      // The checkpoint needs the whole state, gathered on rank 0 (every process takes part);
-      // the contact table reads the contact surfaces, which every process holds.
-      const nonlinear::QuasiStaticSolver::State state = newton.state();
-      if (writer)
-        write_checkpoint(out_dir + "/checkpoint.bin",
-                         {scene->name, run.level(), state, newton.linear_tally(), newton.cut_back()});
-      if (contact_table) contact_table->add(r, view, newton.held_displacement(), newton.multipliers());
-      if (scene->output.vtu && o.write_vtu) write_step_output(r);
-    }
-    if (verbose)
-      fmt::print(stderr, "step {}/{}{}: t = {:.6g}, {} after {} Newton iterations, residual {:.3e} (reference {:.3e}), "
-                 "{:.2f} s{}\n",
-                 r.step, scene->problem.n_steps(), r.cut > 0 ? fmt::format(" (increment / {})", 1 << r.cut) : "",
-                 r.time, nonlinear::to_string(r.reason), r.iterations.size(), r.final_residual, r.reference_residual,
-                 r.wall_seconds, r.retried ? "; retried over half the increment" : "");
-  }, first_step, last_step);
+    if (r.completes_step) output.complete_step(r);
+    if (verbose) print_step_line(r, scene->problem.n_steps());
+  }, first_step, scene->problem.step_reaching(until));
   if (results.empty()) {
     if (verbose) fmt::print(stderr, "nothing to do: the run had completed load step {}\n", first_step - 1);
     return;
