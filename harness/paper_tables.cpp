@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <optional>
 
@@ -56,6 +57,25 @@ std::optional<std::array<double, 3>> top_force(const std::string& out_dir, const
   return f;
 }
 
+// The Newton tolerance a run stopped at: its newton_rtol column, or for a run recorded before
+// that column existed its steps.csv header ("# solver: ...; newton atol A, rtol R, ...").
+std::string newton_rtol(const std::string& out_dir, const Row& r) {
+  if (const auto it = r.find("newton_rtol"); it != r.end() && !it->second.empty()) return it->second;
+  std::ifstream steps(fmt::format("{}/runs/{}-L{}-{}/steps.csv", out_dir, r.at("scene"), r.at("level"), r.at("solver")));
+  std::string line;
+  while (std::getline(steps, line) && line.rfind('#', 0) == 0) {
+    const size_t at = line.find(", rtol ");
+    if (line.rfind("# solver:", 0) != 0 || at == std::string::npos) continue;
+    const size_t from = at + 7;
+    return line.substr(from, line.find(',', from) - from);
+  }
+  return "";
+}
+
+bool same_tolerance(const std::string& a, const std::string& b) {
+  return !a.empty() && !b.empty() && std::strtod(a.c_str(), nullptr) == std::strtod(b.c_str(), nullptr);
+}
+
 std::string mesh_table(const std::vector<Row>& runs) {
   const CsvTable paper = parse_csv(embedded_reference().at("table1-meshes"));
   std::string md =
@@ -90,37 +110,42 @@ std::string time_table(const std::vector<Row>& runs, const std::string& out_dir,
   std::sort(levels.begin(), levels.end());
   std::string md = fmt::format(
       "\n### Table {}: `{}`\n\nRatios are lu-mumps / backend (stiction) and GlobalLU / Schur (paper): above 1 the "
-      "iterative solver is faster or leaner. Newton iterations are summed over the 8 load steps. Force: the clamped "
-      "top's reaction after the last step, relative difference to lu-mumps' (same Newton tolerance, so it should be "
-      "at that tolerance's level). A run its time limit stopped after some linear solves gives its figures per solve "
-      "over those, its peak memory as a lower bound (\"≥\") and no totals.\n\n| level | solver | status | total s | s / linear solve | peak MB | Newton its "
-      "| Krylov / solve | total ratio | s/solve ratio | memory ratio | force vs lu-mumps |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+      "iterative solver is faster or leaner. Newton iterations are summed over the 8 load steps; Newton rtol is the "
+      "relative residual each load step stopped at. Force: the clamped top's reaction after the last step, relative "
+      "difference to lu-mumps' (it should be at the Newton tolerance's level). The total ratio and the force are "
+      "given only between runs of the same Newton tolerance; time per solve and memory do not depend on it. A run its "
+      "time limit stopped after some linear solves gives its figures per solve over those, its peak memory as a lower "
+      "bound (\"≥\") and no totals.\n\n| level | solver | status | total s | s / linear solve | peak MB | Newton its "
+      "| Newton rtol | Krylov / solve | total ratio | s/solve ratio | memory ratio | force vs lu-mumps |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
       table, scene);
   for (int level : levels) {
     const Row* lu = find_run(runs, scene, level, "lu-mumps");
     const auto lu_force = lu && ok(*lu) ? top_force(out_dir, *lu) : std::nullopt;
+    const std::string lu_rtol = lu ? newton_rtol(out_dir, *lu) : "";
     for (const auto& r : runs) {
       if (r.at("scene") != scene || number(r, "level") != level) continue;
+      const std::string rtol = newton_rtol(out_dir, r);
       const bool done = ok(r), per_solve = done || stopped_with_solves(r);
-      const bool ref = done && lu && ok(*lu), per_solve_ref = per_solve && lu && ok(*lu);
+      const bool per_solve_ref = per_solve && lu && ok(*lu), ref = done && per_solve_ref && same_tolerance(rtol, lu_rtol);
       std::string force = "—";
-      if (const auto f = done ? top_force(out_dir, r) : std::nullopt; f && lu_force) {
+      if (const auto f = ref ? top_force(out_dir, r) : std::nullopt; f && lu_force) {
         double diff = 0, size = 0;
         for (int k = 0; k < 3; ++k) diff += std::pow((*f)[k] - (*lu_force)[k], 2), size += std::pow((*lu_force)[k], 2);
         force = size > 0 ? fmt::format("{:.1e}", std::sqrt(diff / size)) : "—";
       }
-      md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", level, r.at("solver"),
+      md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", level, r.at("solver"),
                         run_status_text(r),
                         done ? fixed(number(r, "wall_seconds"), 1) : "—",
                         per_solve ? fixed(number(r, "seconds_per_linear_solve"), 3) : "—",
                         peak_memory_text(r),
                         done ? fixed(number(r, "newton_iterations"), 0) : "—",
+                        rtol.empty() ? "—" : rtol,
                         per_solve ? fixed(number(r, "krylov_per_linear_solve"), 1) : "—",
                         ref ? ratio(number(*lu, "wall_seconds"), number(r, "wall_seconds")) : "—",
                         per_solve_ref ? ratio(number(*lu, "seconds_per_linear_solve"), number(r, "seconds_per_linear_solve"))
                                       : "—",
-                        ref ? ratio(number(*lu, "peak_rss_mb"), number(r, "peak_rss_mb")) : "—", force);
+                        done && per_solve_ref ? ratio(number(*lu, "peak_rss_mb"), number(r, "peak_rss_mb")) : "—", force);
     }
     const Row *schur = nullptr, *global = nullptr;
     for (const auto& p : paper.rows)
@@ -130,7 +155,7 @@ std::string time_table(const std::vector<Row>& runs, const std::string& out_dir,
       if (!p) continue;
       const bool has = number(*p, "total_seconds") > 0;
       const bool pair = has && global && number(*global, "total_seconds") > 0;
-      md += fmt::format("| {} | paper {} | {} | {} | {} | {} | {} | — | {} | {} | {} | — |\n", level, p->at("solver"),
+      md += fmt::format("| {} | paper {} | {} | {} | {} | {} | {} | — | — | {} | {} | {} | — |\n", level, p->at("solver"),
                         has ? "ok" : "out of memory", fixed(number(*p, "total_seconds"), 1),
                         fixed(number(*p, "seconds_per_linear_solve"), 3), fixed(number(*p, "memory_mb"), 0),
                         fixed(number(*p, "newton_iterations"), 0),

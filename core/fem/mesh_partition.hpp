@@ -1,7 +1,6 @@
 #pragma once
 // Which MPI rank owns each cell. On this path the mesh itself stays whole on every rank
-// (scene::divide_scene gives each rank its part instead, for scenes without contact so
-// far); what is divided is the Newton system's rows and the state: each rank owns the dofs
+// (scene::divide_scene gives each rank its part instead); what is divided is the Newton system's rows and the state: each rank owns the dofs
 // of the nodes its cells reach first (fem::DofLayout), holds those and the ghosts it reads
 // (fem::GhostedVector), and assembles its rows of the residual and the tangent from the
 // cells that reach them.
@@ -24,7 +23,9 @@ struct MeshPartition {
   int rank = 0, size = 1;
   std::vector<int> cell_owner;   // rank of every cell (the same on every rank)
   std::vector<int> owned_cells;  // this rank's cells, ascending
-  std::string partitioner;       // PETSc's MatPartitioningType that split the cells (empty on one rank)
+  // PETSc's MatPartitioningType that split the cells; empty on one rank, and over a mesh part
+  // (scene::ScenePart::partitioner names the one that split the whole mesh).
+  std::string partitioner;
   bool whole() const { return size == 1; }
 };
 
