@@ -1,9 +1,9 @@
 #pragma once
 // Which MPI rank owns each cell. On this path the mesh itself stays whole on every rank
-// (scene::divide_scene gives each rank its part instead); what is divided is the Newton system's rows and the state: each rank owns the dofs
-// of the nodes its cells reach first (fem::DofLayout), holds those and the ghosts it reads
-// (fem::GhostedVector), and assembles its rows of the residual and the tangent from the
-// cells that reach them.
+// (scene::divide_scene gives each rank its part instead); what is divided is the Newton
+// system's rows and the state: each rank owns the dofs of the nodes its cells reach first
+// (fem::DofLayout), holds those and the ghosts it reads (fem::GhostedVector), and assembles
+// its rows of the residual and the tangent from the cells that reach them.
 //
 // The cells are split by PETSc's MatPartitioning over the dual graph (cells sharing a
 // facet), with PT-Scotch, the graph partitioner Debian's PETSc carries (it has no ParMETIS,
