@@ -42,10 +42,14 @@ const Row* find_run(const std::vector<Row>& rows, const std::string& scene, int 
   return nullptr;
 }
 
+// A run's per-step table in a sweep directory.
+std::string steps_path(const std::string& out_dir, const Row& r) {
+  return fmt::format("{}/runs/{}-L{}-{}/steps.csv", out_dir, r.at("scene"), r.at("level"), r.at("solver"));
+}
+
 // The last load step's force on the clamped top (x, y, z) of a finished run.
 std::optional<std::array<double, 3>> top_force(const std::string& out_dir, const Row& r) {
-  const std::string path = fmt::format("{}/runs/{}-L{}-{}/steps.csv", out_dir, r.at("scene"), r.at("level"), r.at("solver"));
-  const CsvTable steps = read_csv(path);
+  const CsvTable steps = read_csv(steps_path(out_dir, r));
   if (steps.rows.empty()) return std::nullopt;
   const Row& last = steps.rows.back();
   std::array<double, 3> f{};
@@ -61,7 +65,7 @@ std::optional<std::array<double, 3>> top_force(const std::string& out_dir, const
 // that column existed its steps.csv header ("# solver: ...; newton atol A, rtol R, ...").
 std::string newton_rtol(const std::string& out_dir, const Row& r) {
   if (const auto it = r.find("newton_rtol"); it != r.end() && !it->second.empty()) return it->second;
-  std::ifstream steps(fmt::format("{}/runs/{}-L{}-{}/steps.csv", out_dir, r.at("scene"), r.at("level"), r.at("solver")));
+  std::ifstream steps(steps_path(out_dir, r));
   std::string line;
   while (std::getline(steps, line) && line.rfind('#', 0) == 0) {
     const size_t at = line.find(", rtol ");
