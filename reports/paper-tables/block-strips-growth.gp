@@ -8,9 +8,9 @@ set xlabel 'unknowns of the Newton system'
 set output 'block-strips-time-per-solve.svg'
 set ylabel 's / linear solve (set-up + Krylov)'
 set title 'block-strips: time per linear solve'
-plot data index 0 using 1:2 with linespoints pt 7 lw 2 title 'fieldsplit-schur (p = 1.20)', \
+plot data index 0 using 1:2 with linespoints pt 7 lw 2 title 'fieldsplit-schur (p = 1.28)', \
      data index 1 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.72)', \
-     data index 2 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.44)', \
+     data index 2 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.46)', \
      data index 3 using 1:2 with linespoints pt 7 lw 2 title 'schur-amg (p = 1.29)', \
      data index 4 using 1:2 with linespoints pt 7 lw 2 title 'schur-gamg (p = 1.27)'
 set output 'block-strips-peak-memory.svg'
@@ -18,7 +18,7 @@ set ylabel 'peak resident memory (MB)'
 set title 'block-strips: peak memory'
 plot data index 0 using 1:3 with linespoints pt 7 lw 2 title 'fieldsplit-schur (p = 0.82)', \
      data index 1 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.22)', \
-     data index 2 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.26)', \
+     data index 2 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.11)', \
      data index 3 using 1:3 with linespoints pt 7 lw 2 title 'schur-amg (p = 0.78)', \
      data index 4 using 1:3 with linespoints pt 7 lw 2 title 'schur-gamg (p = 0.77)'
 unset logscale
