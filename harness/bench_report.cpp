@@ -141,23 +141,7 @@ void write_bench_report(const std::string& out_dir) {
 
   md += strong_scaling_section(all_runs);
 
-  // Growth of Krylov iterations per Newton step with the mesh level (iterative backends).
-  std::string growth;
-  for (const auto& scene : scenes)
-    for (const auto& solver : solvers_seen) {
-      std::map<int, double> by_level;
-      for (const auto& r : runs.rows)
-        if (r.at("scene") == scene && r.at("solver") == solver && finished(r) && number(r, "krylov_per_linear_solve") > 1)
-          by_level[static_cast<int>(number(r, "level"))] = number(r, "krylov_per_linear_solve");
-      if (by_level.size() < 2) continue;
-      std::string cells;
-      for (const auto& [level, k] : by_level) cells += fmt::format("L{}: {:.1f}; ", level, k);
-      growth += fmt::format("| {} | {} | {} | {:.2f} |\n", scene, solver, cells,
-                            by_level.rbegin()->second / by_level.begin()->second);
-    }
-  if (!growth.empty())
-    md += "\n## Krylov iterations per Newton step across mesh levels\n\n| scene | solver | per level | growth "
-          "(finest / coarsest) |\n|---|---|---|---|\n" + growth;
+  md += krylov_growth_section(runs);
 
   md += "\n## Backend options\n\nDefaults from `solvers/options/<name>.opts` (keys under the backend's prefix); "
         "options given on the command line, if any, are listed under How it was made.\n";

@@ -8,6 +8,7 @@
 #include <map>
 
 #include "common/error.hpp"
+#include "sweep_table.hpp"
 
 namespace stiction::harness {
 
@@ -16,6 +17,7 @@ namespace {
 struct Point {
   int level;
   double n, seconds_per_solve, peak_mb, krylov;
+  std::string options;
 };
 
 }  // namespace
@@ -52,7 +54,7 @@ std::string scaling_section(const CsvTable& runs, const std::string& scene, cons
     const int level = static_cast<int>(number(r, "level"));
     by_solver[r.at("solver")][level] = {level, number(r, "unknowns") + number(r, "multipliers"),
                                         number(r, "seconds_per_linear_solve"), number(r, "peak_rss_mb"),
-                                        number(r, "krylov_per_linear_solve")};
+                                        number(r, "krylov_per_linear_solve"), extra_petsc_options(r)};
   }
   for (auto it = by_solver.begin(); it != by_solver.end();)
     it = it->second.size() < 2 ? by_solver.erase(it) : std::next(it);
@@ -60,24 +62,26 @@ std::string scaling_section(const CsvTable& runs, const std::string& scene, cons
 
   std::string md = fmt::format(
       "\n### {}: growth with the mesh\n\nLeast-squares exponent p of cost ~ n^p over the levels (n: unknowns of the "
-      "Newton system, multipliers included).\n\n| solver | levels | p (s / linear solve) | p (peak memory) | Krylov / "
+      "Newton system, multipliers included). A level run with PETSc options beyond the backend's defaults names "
+      "them in the last column.\n\n| solver | levels | p (s / linear solve) | p (peak memory) | Krylov / "
       "solve per level |\n|---|---|---|---|---|\n",
       scene);
   std::string data, time_plot, memory_plot, krylov_plot;
   int block = 0;
   for (const auto& [solver, points] : by_solver) {
     std::vector<double> n, t, m;
-    std::string krylov, levels;
+    std::string levels;
+    KrylovByLevel krylov;
     data += fmt::format("# {}\n# n s_per_solve peak_mb level krylov_per_solve\n", solver);
     for (const auto& [level, p] : points) {
       n.push_back(p.n), t.push_back(p.seconds_per_solve), m.push_back(p.peak_mb);
-      krylov += fmt::format("{}L{}: {:.1f}", krylov.empty() ? "" : "; ", level, p.krylov);
+      krylov[level] = {p.krylov, p.options};
       levels += fmt::format("{}{}", levels.empty() ? "" : ", ", level);
       data += fmt::format("{:.0f} {:.6g} {:.6g} {} {:.3f}\n", p.n, p.seconds_per_solve, p.peak_mb, level, p.krylov);
     }
     data += "\n\n";
     const double pt = log_log_slope(n, t), pm = log_log_slope(n, m);
-    md += fmt::format("| {} | {} | {:.2f} | {:.2f} | {} |\n", solver, levels, pt, pm, krylov);
+    md += fmt::format("| {} | {} | {:.2f} | {:.2f} | {} |\n", solver, levels, pt, pm, krylov_per_level_text(krylov));
     const std::string sep = block ? ", \\\n     " : "plot ";
     time_plot += fmt::format("{}data index {} using 1:2 with linespoints pt 7 lw 2 title '{} (p = {:.2f})'", sep, block, solver, pt);
     memory_plot += fmt::format("{}data index {} using 1:3 with linespoints pt 7 lw 2 title '{} (p = {:.2f})'", sep, block, solver, pm);
@@ -107,6 +111,47 @@ std::string scaling_section(const CsvTable& runs, const std::string& scene, cons
   return md + fmt::format("\n![time per linear solve]({0}-time-per-solve.svg) ![peak memory]({0}-peak-memory.svg) "
                           "![Krylov iterations]({0}-krylov.svg)\n",
                           scene);
+}
+
+std::string krylov_per_level_text(const KrylovByLevel& levels) {
+  std::string text;
+  for (const auto& [level, k] : levels) {
+    text += fmt::format("{}L{}: {:.1f}", text.empty() ? "" : "; ", level, k.per_newton_step);
+    if (!k.options.empty()) text += " (" + k.options + ")";
+  }
+  return text;
+}
+
+std::string krylov_growth_text(const KrylovByLevel& levels) {
+  std::map<std::string, KrylovByLevel> by_options;
+  for (const auto& [level, k] : levels) by_options[k.options][level] = k;
+  const KrylovByLevel* widest = nullptr;  // "" (the defaults) sorts first, so it wins a tie
+  for (const auto& [options, group] : by_options)
+    if (group.size() >= 2 && (!widest || group.size() > widest->size())) widest = &group;
+  if (!widest) return "—";
+  const auto& [first, coarsest] = *widest->begin();
+  const auto& [last, finest] = *widest->rbegin();
+  const std::string growth = fmt::format("{:.2f}", finest.per_newton_step / coarsest.per_newton_step);
+  return widest->size() == levels.size() ? growth : fmt::format("{} (L{} to L{})", growth, first, last);
+}
+
+std::string krylov_growth_section(const CsvTable& runs) {
+  std::map<std::pair<std::string, std::string>, KrylovByLevel> series;  // (scene, solver) -> levels
+  for (const auto& r : runs.rows)
+    if (r.at("status") == "ok" && number(r, "krylov_per_linear_solve") > 1)
+      series[{r.at("scene"), r.at("solver")}][static_cast<int>(number(r, "level"))] = {
+          number(r, "krylov_per_linear_solve"), extra_petsc_options(r)};
+  std::string rows;
+  for (const auto& [key, levels] : series)
+    if (levels.size() >= 2)
+      rows += fmt::format("| {} | {} | {} | {} |\n", key.first, key.second, krylov_per_level_text(levels),
+                          krylov_growth_text(levels));
+  if (rows.empty()) return "";
+  return "\n## Krylov iterations per Newton step across mesh levels\n\nGrowth: finest / coarsest level among "
+         "the levels run with the same PETSc options (options beyond the backend's defaults are named beside "
+         "their level; they can change the Krylov method itself).\n\n| scene | solver | per level | growth |\n"
+         "|---|---|---|---|\n" +
+         rows;
 }
 
 }  // namespace stiction::harness

@@ -2,10 +2,12 @@
 // How each backend's cost grows with the mesh, for one scene of a sweep: the time per
 // linear solve and the peak memory against the Newton system's size (displacement,
 // pressure and multiplier unknowns) on log-log axes, with the least-squares exponent p of
-// cost ~ n^p per backend, and the Krylov iterations per Newton step against the level.
+// cost ~ n^p per backend, and the Krylov iterations per Newton step against the level (with
+// their growth across the levels, in a table of every scene).
 // Drawn as SVG by gnuplot (Debian's gnuplot-nox, which the report scripts install), from a
 // data file and a script written beside the report so that anyone can redraw or restyle
 // them.
+#include <map>
 #include <string>
 #include <vector>
 
@@ -27,5 +29,28 @@ double log_log_slope(const std::vector<double>& x, const std::vector<double>& y)
 // <scene>-growth.dat / .gp and, when gnuplot runs, <scene>-time-per-solve.svg,
 // <scene>-peak-memory.svg and <scene>-krylov.svg into out_dir.
 std::string scaling_section(const CsvTable& runs, const std::string& scene, const std::string& out_dir);
+
+// Krylov iterations per Newton step of one backend at one mesh level, and the PETSc options
+// its run there was given beyond the backend's defaults.
+struct LevelKrylov {
+  double per_newton_step = 0;
+  std::string options;
+};
+using KrylovByLevel = std::map<int, LevelKrylov>;
+
+// "L0: 47.4; L1: 58.5; L2: 85.3 (-opt 50)": each level's count, and the options of a level
+// that ran with some.
+std::string krylov_per_level_text(const KrylovByLevel& levels);
+
+// The count's growth from the coarsest to the finest level among levels run with the same
+// options: "1.80"; "1.23 (L0 to L1)" when those are not all the levels; "—" when no two
+// levels share their options. Of several such sets, the one spanning the most levels (the
+// defaults on a tie). Other options can change the Krylov method itself (a shorter GMRES
+// restart at the finest level, say), and a growth across them would measure that change.
+std::string krylov_growth_text(const KrylovByLevel& levels);
+
+// The sweep's "Krylov iterations per Newton step across mesh levels": a row per scene and
+// iterative backend with finished runs at two or more levels; empty when there is none.
+std::string krylov_growth_section(const CsvTable& runs);
 
 }  // namespace stiction::harness

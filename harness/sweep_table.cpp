@@ -70,11 +70,16 @@ CsvTable upgrade_sweep_columns(const std::string& path, const std::string& colum
 std::string run_status_text(const std::map<std::string, std::string>& row) {
   const std::string& status = row.at("status");
   if (status == "ok") {
-    const auto options = row.find("petsc_options");
-    return options == row.end() || options->second.empty() ? "ok" : "ok (" + options->second + ")";
+    const std::string options = extra_petsc_options(row);
+    return options.empty() ? "ok" : "ok (" + options + ")";
   }
   const std::string& detail = row.at("detail");
   return detail.empty() ? status : status + ": " + detail;
+}
+
+std::string extra_petsc_options(const std::map<std::string, std::string>& row) {
+  const auto options = row.find("petsc_options");
+  return options == row.end() ? "" : options->second;
 }
 
 bool stopped_with_solves(const std::map<std::string, std::string>& row) {

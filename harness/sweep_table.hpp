@@ -28,6 +28,9 @@ CsvTable upgrade_sweep_columns(const std::string& path, const std::string& colum
 // sweep gave its backend beyond its defaults (the petsc_options column) when there are any;
 // otherwise the status and what stopped the run.
 std::string run_status_text(const std::map<std::string, std::string>& row);
+// Those PETSc options beyond the backend's defaults ("" when none, or for a sweep older
+// than the column).
+std::string extra_petsc_options(const std::map<std::string, std::string>& row);
 
 // A run its time limit stopped after it had finished some linear solves: its per-solve
 // figures (seconds and Krylov iterations per solve, over those solves) are measured, its

@@ -38,6 +38,37 @@ TEST(ScalingPlots, LogLogSlopeIsThePowerLawsExponent) {
   EXPECT_NEAR(log_log_slope({1e3, 0.0, 8e3}, {1.0, 5.0, 8.0}), 1.0, 1e-12);  // non-positive points skipped
 }
 
+// A level run with other options (a shorter GMRES restart at the finest level) is shown with
+// them, and the growth is taken only between levels run with the same ones.
+TEST(ScalingPlots, KrylovGrowthOnlyBetweenLevelsRunWithTheSameOptions) {
+  const std::string restart = "-schur_amg_ksp_gmres_restart 50";
+  KrylovByLevel levels{{0, {50, ""}}, {1, {60, ""}}, {2, {90, restart}}};
+  EXPECT_EQ(krylov_per_level_text(levels), "L0: 50.0; L1: 60.0; L2: 90.0 (" + restart + ")");
+  EXPECT_EQ(krylov_growth_text(levels), "1.20 (L0 to L1)");
+  levels[0].options = levels[1].options = restart;
+  EXPECT_EQ(krylov_growth_text(levels), "1.80");
+  EXPECT_EQ(krylov_growth_text({{0, {50, ""}}, {2, {90, restart}}}), "—");
+  EXPECT_EQ(krylov_growth_text({{0, {50, ""}}, {1, {55, ""}}, {2, {90, restart}}, {3, {99, restart}}}),
+            "1.10 (L0 to L1)")
+      << "of two sets spanning as many levels, the defaults'";
+
+  const std::string runs_csv =
+      "scene,level,solver,status,krylov_per_linear_solve,petsc_options\n"
+      "block-strips,0,schur-amg,ok,47.4,\n"
+      "block-strips,1,schur-amg,ok,58.5,\n"
+      "block-strips,2,schur-amg,ok,85.3," + restart + "\n"
+      "block-strips,0,lu-mumps,ok,1.0,\n"
+      "block-strips,1,lu-mumps,ok,1.0,\n";
+  const fs::path csv = fs::temp_directory_path() / "stiction-krylov-growth-test.csv";
+  std::ofstream(csv) << runs_csv;
+  const std::string md = krylov_growth_section(read_csv(csv.string()));
+  EXPECT_NE(md.find("| block-strips | schur-amg | L0: 47.4; L1: 58.5; L2: 85.3 (" + restart + ") | 1.23 (L0 to L1) |"),
+            std::string::npos)
+      << md;
+  EXPECT_EQ(md.find("lu-mumps"), std::string::npos) << "a direct solver has no Krylov growth";
+  fs::remove(csv);
+}
+
 void write(const fs::path& p, const std::string& text) {
   fs::create_directories(p.parent_path());
   std::ofstream(p) << text;
