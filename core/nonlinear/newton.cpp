@@ -361,13 +361,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
   auto t0 = std::chrono::steady_clock::now();
   const auto st0 = evaluate(t, u_.view(), lambda_, r);
   double asm_seconds = seconds_since(t0);
-  if (st0.inverted_cell >= 0)
-    throw Error(fmt::format("load step {}: {} is inverted at the start of the step", step, describe_cell(st0.inverted_cell)),
-                ErrorKind::Numerical, Reach::EveryProcess);
-  if (st0.folded_cell >= 0)
-    throw Error(fmt::format("load step {}: {} is folded (det F <= 0 at one of its nodes) at the start of the step",
-                            step, describe_cell(st0.folded_cell)),
-                ErrorKind::Numerical, Reach::EveryProcess);
+  reject_invalid_start(step, st0);
   // A folded cell (fem::InternalForceStatus) may be crossed by Newton's iterates, which
   // leave it again on the way to a valid solution (measured on the frictional ironing at
   // level 1: refusing folded iterates stopped the run at t = 1.18, where every converged
@@ -403,37 +397,21 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
 
   PetscVec du;
   STICTION_PETSC(VecDuplicate(builder_.system().rhs, du.out()));
-  // Eisenstat-Walker reads the norm of the whole right side of each Newton system (the
-  // residual the Krylov tolerance is relative to): with contact, a load carried by the
-  // constraints (a moving ground) leaves the displacement residual at zero at the first
-  // iterate, and a ratio of displacement residuals would then stay infinite.
-  double eta = 0, rhs_prev = 0;
+  ForcingHistory forcing;
   for (int it = 0;; ++it) {
     const bool pending = lifting_.pending(layout_, u_.view());
     const double tol = std::max(settings_.atol, settings_.rtol * res.reference_residual);
     const bool constraints_ok =
         states_checked && last_changes == 0 && cnorm <= std::max(settings_.atol, settings_.rtol * c_reference);
     if (!pending && (it > 0 || rnorm <= settings_.atol) && constraints_ok && rnorm <= tol) {
-      if (accepted.folded_cell >= 0) {
-        res.detail = fmt::format("the residual converged at a state where {} is folded (det F <= 0 at one of "
-                                 "its nodes)", describe_cell(accepted.folded_cell));
-        return finish(NewtonReason::DivergedInvertedElement);
-      }
-      if (accepted.min_det_f < settings_.min_det_f_ratio * st0.min_det_f) {
-        res.detail = fmt::format("the smallest det F fell from {:.3g} to {:.3g} in one increment, in {}",
-                                 st0.min_det_f, accepted.min_det_f, describe_cell(accepted.min_det_f_cell));
-        return finish(NewtonReason::DivergedInvertedElement);
-      }
+      res.detail = unacceptable_converged_state(st0, accepted);
+      if (!res.detail.empty()) return finish(NewtonReason::DivergedInvertedElement);
       return finish(rnorm <= settings_.atol ? NewtonReason::ConvergedAbsolute : NewtonReason::ConvergedRelative);
     }
     if (it == settings_.max_iterations) {
       res.detail = fmt::format("{} iterations, residual {:.3e} {} tolerance {:.3e}", it, rnorm,
                                rnorm > tol ? "above" : "within", tol);
-      if (!lambda_.empty()) {
-        const double c_tol = std::max(settings_.atol, settings_.rtol * c_reference);
-        res.detail += fmt::format(" (contact residual {:.3e} {} its tolerance {:.3e}, {} states changed last)", cnorm,
-                                  cnorm > c_tol ? "above" : "within", c_tol, last_changes);
-      }
+      if (!lambda_.empty()) res.detail += contact_residual_detail(cnorm, c_reference, last_changes);
       return finish(NewtonReason::DivergedMaxIterations);
     }
 
@@ -444,33 +422,11 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
     if (it == 0) res.reference_residual = std::max(rnorm, lifting_.free_norm(layout_, builder_.system().rhs));
 
     linear_.setup(builder_.system());
-    if (settings_.forcing == Forcing::EisenstatWalker) {
-      PetscReal rhs_norm;
-      STICTION_PETSC(VecNorm(builder_.system().rhs, NORM_2, &rhs_norm));
-      eta = next_forcing_term(eta, rhs_norm, rhs_prev, rnorm,
-                              std::max(settings_.atol, settings_.rtol * res.reference_residual), it == 0);
-      rhs_prev = rhs_norm;
-      // Contact: the state machine reads the gaps and multipliers of every iterate, and
-      // loose solves (eta up to 0.9) make the states flip. Measured on hertz-cylinder-2d
-      // level 1 with schur-amg: uncapped, 25 iterations and 953 state changes without
-      // converging; so eta never exceeds the fixed default there.
-      if (!lambda_.empty()) eta = std::min(eta, settings_.krylov_rtol > 0 ? settings_.krylov_rtol : kContactForcingCap);
-      linear_.set_relative_tolerance(eta);
-    } else if (settings_.krylov_rtol > 0) {
-      linear_.set_relative_tolerance(settings_.krylov_rtol);
-    }
-    rec.linear = linear_.solve(builder_.system(), du);
-    // A solve that gives no update is continued once with more memory where the backend
-    // can (a longer GMRES cycle), before the increment is given up.
-    const double terminal = terminal_linear_residual(res.reference_residual, c_reference, pending);
-    if (!rec.linear.converged && !usable_direction(rec.linear, terminal))
-      linear_.continue_longer(builder_.system(), du, rec.linear);
-    if (observer_) observer_(builder_.system(), du, rec.linear, step, it + 1);
-    if (!rec.linear.converged && !usable_direction(rec.linear, terminal)) {
+    set_krylov_tolerance(it == 0, rnorm, res.reference_residual, forcing);
+    if (!solve_for_direction(step, it, terminal_linear_residual(res.reference_residual, c_reference, pending), du,
+                             rec.linear)) {
       keep_iteration(rec);
-      res.detail = fmt::format("linear solver {} stopped with {}", linear_.name(), rec.linear.reason);
-      if (const auto k = rec.linear.extra.find("krylov_continued_restart"); k != rec.linear.extra.end())
-        res.detail += fmt::format(" (also when continued with a restart of {:g})", k->second);
+      res.detail = linear_failure_detail(rec.linear);
       return finish(NewtonReason::DivergedLinearSolver);
     }
     fem::GhostedVector dv(pattern_);
@@ -480,10 +436,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
     asm_seconds = trial.assembly_seconds;
     if (trial.failed) {
       keep_iteration(rec);
-      res.detail = trial.failure == NewtonReason::DivergedNaN
-                       ? "the residual is not finite after every step reduction"
-                       : fmt::format("{} inverts (det F <= 0) even after {} step halvings",
-                                     describe_cell(trial.status.inverted_cell), settings_.max_backtracks);
+      res.detail = trial_failure_detail(trial);
       return finish(trial.failure);
     }
     const double alpha = trial.alpha;
@@ -569,6 +522,82 @@ double QuasiStaticSolver::terminal_linear_residual(double reference, double c_re
   double tol = std::max(settings_.atol, settings_.rtol * reference);
   if (!lambda_.empty()) tol = std::min(tol, std::max(settings_.atol, settings_.rtol * c_reference));
   return 0.5 * tol;
+}
+
+void QuasiStaticSolver::reject_invalid_start(int step, const fem::InternalForceStatus& start) const {
+  if (start.inverted_cell >= 0)
+    throw Error(fmt::format("load step {}: {} is inverted at the start of the step", step,
+                            describe_cell(start.inverted_cell)),
+                ErrorKind::Numerical, Reach::EveryProcess);
+  if (start.folded_cell >= 0)
+    throw Error(fmt::format("load step {}: {} is folded (det F <= 0 at one of its nodes) at the start of the step",
+                            step, describe_cell(start.folded_cell)),
+                ErrorKind::Numerical, Reach::EveryProcess);
+}
+
+std::string QuasiStaticSolver::unacceptable_converged_state(const fem::InternalForceStatus& start,
+                                                            const fem::InternalForceStatus& accepted) const {
+  if (accepted.folded_cell >= 0)
+    return fmt::format("the residual converged at a state where {} is folded (det F <= 0 at one of its nodes)",
+                       describe_cell(accepted.folded_cell));
+  if (accepted.min_det_f < settings_.min_det_f_ratio * start.min_det_f)
+    return fmt::format("the smallest det F fell from {:.3g} to {:.3g} in one increment, in {}", start.min_det_f,
+                       accepted.min_det_f, describe_cell(accepted.min_det_f_cell));
+  return {};
+}
+
+std::string QuasiStaticSolver::contact_residual_detail(double cnorm, double c_reference, int last_changes) const {
+  const double c_tol = std::max(settings_.atol, settings_.rtol * c_reference);
+  return fmt::format(" (contact residual {:.3e} {} its tolerance {:.3e}, {} states changed last)", cnorm,
+                     cnorm > c_tol ? "above" : "within", c_tol, last_changes);
+}
+
+// Eisenstat-Walker reads the norm of the whole right side of each Newton system (the
+// residual the Krylov tolerance is relative to): with contact, a load carried by the
+// constraints (a moving ground) leaves the displacement residual at zero at the first
+// iterate, and a ratio of displacement residuals would then stay infinite.
+void QuasiStaticSolver::set_krylov_tolerance(bool first, double rnorm, double reference, ForcingHistory& forcing) {
+  if (settings_.forcing == Forcing::EisenstatWalker) {
+    PetscReal rhs_norm;
+    STICTION_PETSC(VecNorm(builder_.system().rhs, NORM_2, &rhs_norm));
+    forcing.eta = next_forcing_term(forcing.eta, rhs_norm, forcing.rhs_prev, rnorm,
+                                    std::max(settings_.atol, settings_.rtol * reference), first);
+    forcing.rhs_prev = rhs_norm;
+    // Contact: the state machine reads the gaps and multipliers of every iterate, and
+    // loose solves (eta up to 0.9) make the states flip. Measured on hertz-cylinder-2d
+    // level 1 with schur-amg: uncapped, 25 iterations and 953 state changes without
+    // converging; so eta never exceeds the fixed default there.
+    if (!lambda_.empty())
+      forcing.eta = std::min(forcing.eta, settings_.krylov_rtol > 0 ? settings_.krylov_rtol : kContactForcingCap);
+    linear_.set_relative_tolerance(forcing.eta);
+  } else if (settings_.krylov_rtol > 0) {
+    linear_.set_relative_tolerance(settings_.krylov_rtol);
+  }
+}
+
+// A solve that gives no update is continued once with more memory where the backend can (a
+// longer GMRES cycle), before the increment is given up.
+bool QuasiStaticSolver::solve_for_direction(int step, int it, double terminal_residual, Vec du,
+                                            LinearSolveStats& stats) {
+  stats = linear_.solve(builder_.system(), du);
+  if (!stats.converged && !usable_direction(stats, terminal_residual))
+    linear_.continue_longer(builder_.system(), du, stats);
+  if (observer_) observer_(builder_.system(), du, stats, step, it + 1);
+  return stats.converged || usable_direction(stats, terminal_residual);
+}
+
+std::string QuasiStaticSolver::linear_failure_detail(const LinearSolveStats& stats) const {
+  std::string detail = fmt::format("linear solver {} stopped with {}", linear_.name(), stats.reason);
+  if (const auto k = stats.extra.find("krylov_continued_restart"); k != stats.extra.end())
+    detail += fmt::format(" (also when continued with a restart of {:g})", k->second);
+  return detail;
+}
+
+std::string QuasiStaticSolver::trial_failure_detail(const TrialStep& trial) const {
+  return trial.failure == NewtonReason::DivergedNaN
+             ? "the residual is not finite after every step reduction"
+             : fmt::format("{} inverts (det F <= 0) even after {} step halvings",
+                           describe_cell(trial.status.inverted_cell), settings_.max_backtracks);
 }
 
 // A failed linear solve is retried over a smaller increment only where the increment could

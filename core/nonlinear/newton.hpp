@@ -284,6 +284,22 @@ private:
   // (zero while a Dirichlet lifting is pending): a linear residual below it meets them all.
   double terminal_linear_residual(double reference, double c_reference, bool pending) const;
   void report_state_changes(int step, int iteration, double t, const std::vector<char>& before) const;
+  // Pieces of solve_increment's checks and messages: a start state with an inverted or
+  // folded cell ends the run (throws); a converged state is refused (the reason returned,
+  // empty when it is accepted) when it holds a folded cell or det F fell too far.
+  void reject_invalid_start(int step, const fem::InternalForceStatus& start) const;
+  std::string unacceptable_converged_state(const fem::InternalForceStatus& start,
+                                           const fem::InternalForceStatus& accepted) const;
+  std::string contact_residual_detail(double cnorm, double c_reference, int last_changes) const;
+  // The Krylov tolerance of the next solve: the scene's, or Eisenstat-Walker's from the
+  // right sides of the systems so far (see Forcing above).
+  struct ForcingHistory {
+    double eta = 0, rhs_prev = 0;
+  };
+  void set_krylov_tolerance(bool first, double rnorm, double reference, ForcingHistory& forcing);
+  // The Newton update du of the assembled system; false when the solve gave none usable.
+  bool solve_for_direction(int step, int it, double terminal_residual, Vec du, LinearSolveStats& stats);
+  std::string linear_failure_detail(const LinearSolveStats& stats) const;
   // Pieces of solve_increment: the split of a Newton update into u (and p) and multipliers,
   // the backtracked step (u_ and lambda_ move only when it succeeds), and the norm of the
   // constraint forces in a residual.
@@ -296,6 +312,7 @@ private:
   };
   void split_update(Vec du, fem::GhostedVector& dv, std::vector<double>& dl) const;
   TrialStep take_step(double t, const fem::GhostedVector& dv, const std::vector<double>& dl, Residuals& rt);
+  std::string trial_failure_detail(const TrialStep& trial) const;
   double contact_force_norm(const Residuals& r) const;
   std::string describe_cell(int c) const {
     return part_ ? "cell " + std::to_string(c) + " of the whole mesh" : mesh::describe_cell(problem_.space->mesh(), c);
