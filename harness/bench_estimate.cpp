@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "csv_table.hpp"
+
 namespace stiction::harness {
 
 std::string BenchRun::key() const { return fmt::format("{}|{}|{}|{}", scene, level, solver, processes); }
@@ -12,6 +14,15 @@ std::string BenchRun::key() const { return fmt::format("{}|{}|{}|{}", scene, lev
 std::string BenchRun::id() const {
   return fmt::format("{}-L{}-{}{}", std::filesystem::path(scene).stem().string(), level, solver,
                      processes > 1 ? fmt::format("-np{}", processes) : "");
+}
+
+BenchRun bench_run_of(const std::map<std::string, std::string>& row) {
+  return {row.at("scene"), row.at("solver"), static_cast<int>(number(row, "level")),
+          std::max(1, static_cast<int>(number(row, "processes")))};
+}
+
+std::string run_directory(const std::string& out_dir, const std::map<std::string, std::string>& row) {
+  return out_dir + "/runs/" + bench_run_of(row).id();
 }
 
 // The same scene, backend and process count one level down, times the growth that backend

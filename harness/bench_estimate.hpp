@@ -16,6 +16,11 @@ struct BenchRun {
   std::string id() const;   // the run's directory name: <scene>-L<level>-<solver>[-np<N>]
 };
 
+// The run a row of runs.csv records (one process for a sweep older than the column).
+BenchRun bench_run_of(const std::map<std::string, std::string>& row);
+// That run's directory in the sweep out_dir: <out_dir>/runs/<id>.
+std::string run_directory(const std::string& out_dir, const std::map<std::string, std::string>& row);
+
 // Wall time of every finished run, by BenchRun::key().
 struct FinishedRuns {
   std::map<std::string, std::pair<BenchRun, double>> by_key;

@@ -8,6 +8,7 @@
 #include <set>
 #include <tuple>
 
+#include "bench_estimate.hpp"
 #include "common/error.hpp"
 #include "csv_table.hpp"
 #include "ksp_solver.hpp"
@@ -40,7 +41,7 @@ std::string ratio(double reference, double value) {
 }
 
 // MPI processes of a run (1 for an older sweep's rows, which have no such column).
-int processes_of(const Row& r) { return std::max(1, static_cast<int>(number(r, "processes"))); }
+int processes_of(const Row& r) { return bench_run_of(r).processes; }
 
 // Strong scaling: each (scene, level, backend) run on several process counts, against its
 // one-process run. Assembly per Newton iteration, time per linear solve, and the peak

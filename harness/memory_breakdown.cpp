@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "bench_estimate.hpp"
 #include "csv_table.hpp"
 
 namespace stiction::harness {
@@ -15,8 +16,7 @@ std::string memory_breakdown_table(const std::vector<std::map<std::string, std::
   std::string rows;
   for (const auto& r : runs) {
     if (std::find(scenes.begin(), scenes.end(), r.at("scene")) == scenes.end() || r.at("status") != "ok") continue;
-    const std::string path =
-        fmt::format("{}/runs/{}-L{}-{}/metrics.toml", out_dir, r.at("scene"), r.at("level"), r.at("solver"));
+    const std::string path = run_directory(out_dir, r) + "/metrics.toml";
     if (!std::filesystem::exists(path)) continue;
     toml::table metrics;
     try {

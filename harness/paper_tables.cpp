@@ -1,5 +1,6 @@
 #include "paper_tables.hpp"
 
+#include "bench_estimate.hpp"
 #include "memory_breakdown.hpp"
 #include "sweep_table.hpp"
 
@@ -44,7 +45,7 @@ const Row* find_run(const std::vector<Row>& rows, const std::string& scene, int 
 
 // A run's per-step table in a sweep directory.
 std::string steps_path(const std::string& out_dir, const Row& r) {
-  return fmt::format("{}/runs/{}-L{}-{}/steps.csv", out_dir, r.at("scene"), r.at("level"), r.at("solver"));
+  return run_directory(out_dir, r) + "/steps.csv";
 }
 
 // The last load step's force on the clamped top (x, y, z) of a finished run.
