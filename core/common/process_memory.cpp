@@ -31,11 +31,15 @@ namespace {
 
 // Blocks of at least this size are mapped on their own; a heap whose free top exceeds twice
 // it is trimmed (glibc's own dynamic rule keeps the trim threshold at twice the mapping one).
-// STICTION_MMAP_THRESHOLD_MB, 4 by default, within what glibc's mallopt accepts (it refuses
-// thresholds above 32 MB on 64-bit systems).
+// STICTION_MMAP_THRESHOLD_MB, 1 by default, within what glibc's mallopt accepts (it refuses
+// thresholds above 32 MB on 64-bit systems). 1 MB puts a vector of a few hundred thousand
+// unknowns (a Krylov basis vector at level 1 of the block with strips is 2.8 MB) in its own
+// mapping: a basis freed before the next assembly is then returned rather than held in the
+// heap while that assembly and set-up allocate theirs, which set the run's peak
+// (reports/README.md, "Level-1 peak memory").
 std::size_t mapped_block_bytes() {
   const char* given = std::getenv("STICTION_MMAP_THRESHOLD_MB");
-  if (!given) return std::size_t{4} << 20;
+  if (!given) return std::size_t{1} << 20;
   char* end = nullptr;
   const double mb = std::strtod(given, &end);
   if (end == given || *end != '\0' || !(mb >= 0.125 && mb <= 32))

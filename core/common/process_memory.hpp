@@ -13,7 +13,7 @@ double proc_status_mb(int pid, const char* field);
 inline double resident_mb() { return proc_status_mb(0, "VmRSS"); }
 inline double peak_resident_mb() { return proc_status_mb(0, "VmHWM"); }
 
-// Large blocks (4 MB and more; STICTION_MMAP_THRESHOLD_MB changes it) get their own mapping,
+// Large blocks (1 MB and more; STICTION_MMAP_THRESHOLD_MB changes it) get their own mapping,
 // returned to the system when freed, and the heap's free top is trimmed. Debian's PETSc
 // links SuperLU_dist, whose CombBLAS headers switch both off in a static initialiser
 // (mallopt(M_MMAP_MAX, 0), mallopt(M_TRIM_THRESHOLD, -1)) in every program that loads it:

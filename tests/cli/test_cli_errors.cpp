@@ -990,8 +990,9 @@ TEST_F(StictionCli, MumpsPivotingIsRecordedAndDelaysPivotsOnlyWhereContactRowsAr
   EXPECT_EQ(largest_delay("cantilever-2d"), 0);
 }
 
-// A run's large arrays are mapped on their own, so that memory a phase frees leaves the
-// process and the peak RSS is what a phase needs (common/process_memory.hpp): block-compression's
+// A run's large arrays (1 MB and more by default) are mapped on their own, so that memory a
+// phase frees leaves the process and the peak RSS is what a phase needs
+// (common/process_memory.hpp): block-compression's
 // matrix and vectors at its first linear solve, backed by transparent huge pages (the run
 // re-executed itself with glibc.malloc.hugetlb=1). With STICTION_HOLD_FREED_MEMORY=1 (the
 // settings SuperLU_dist's CombBLAS leaves in every program that loads PETSc) none is, and
@@ -1019,7 +1020,7 @@ TEST_F(StictionCli, LargeArraysAreMappedSoThatFreedMemoryLeavesTheProcess) {
   unsetenv("STICTION_HOLD_FREED_MEMORY");
   EXPECT_GT(mapped, 10.0);  // at least the matrix (45 438 rows, about 28 MB of values)
   EXPECT_EQ(held_mapped, 0.0);
-  EXPECT_NE(header.find("mapped on their own"), std::string::npos) << header;
+  EXPECT_NE(header.find("blocks of 1 MB and more mapped on their own"), std::string::npos) << header;
   EXPECT_NE(header.find("glibc.malloc.hugetlb=1"), std::string::npos) << header;
   EXPECT_NE(held_header.find("freed memory held"), std::string::npos) << held_header;
   setenv("STICTION_MMAP_THRESHOLD_MB", "64", 1);  // beyond glibc's 32 MB
