@@ -142,7 +142,7 @@ void write_bench_report(const std::string& out_dir) {
 
   md += strong_scaling_section(all_runs);
 
-  md += krylov_growth_section(runs);
+  md += krylov_growth_section(runs, out_dir);
 
   md += "\n## Backend options\n\nDefaults from `solvers/options/<name>.opts` (keys under the backend's prefix); "
         "options given on the command line, if any, are listed under How it was made.\n";

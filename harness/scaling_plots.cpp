@@ -8,6 +8,7 @@
 #include <map>
 
 #include "common/error.hpp"
+#include "run_settings.hpp"
 #include "sweep_table.hpp"
 
 namespace stiction::harness {
@@ -17,7 +18,7 @@ namespace {
 struct Point {
   int level;
   double n, seconds_per_solve, peak_mb, krylov;
-  std::string options;
+  std::string options, settings;
 };
 
 }  // namespace
@@ -54,7 +55,8 @@ std::string scaling_section(const CsvTable& runs, const std::string& scene, cons
     const int level = static_cast<int>(number(r, "level"));
     by_solver[r.at("solver")][level] = {level, number(r, "unknowns") + number(r, "multipliers"),
                                         number(r, "seconds_per_linear_solve"), number(r, "peak_rss_mb"),
-                                        number(r, "krylov_per_linear_solve"), extra_petsc_options(r)};
+                                        number(r, "krylov_per_linear_solve"), extra_petsc_options(r),
+                                        run_backend_settings(out_dir, r)};
   }
   for (auto it = by_solver.begin(); it != by_solver.end();)
     it = it->second.size() < 2 ? by_solver.erase(it) : std::next(it);
@@ -75,7 +77,7 @@ std::string scaling_section(const CsvTable& runs, const std::string& scene, cons
     data += fmt::format("# {}\n# n s_per_solve peak_mb level krylov_per_solve\n", solver);
     for (const auto& [level, p] : points) {
       n.push_back(p.n), t.push_back(p.seconds_per_solve), m.push_back(p.peak_mb);
-      krylov[level] = {p.krylov, p.options};
+      krylov[level] = {p.krylov, p.options, p.settings};
       levels += fmt::format("{}{}", levels.empty() ? "" : ", ", level);
       data += fmt::format("{:.0f} {:.6g} {:.6g} {} {:.3f}\n", p.n, p.seconds_per_solve, p.peak_mb, level, p.krylov);
     }
@@ -123,11 +125,19 @@ std::string krylov_per_level_text(const KrylovByLevel& levels) {
 }
 
 std::string krylov_growth_text(const KrylovByLevel& levels) {
-  std::map<std::string, KrylovByLevel> by_options;
-  for (const auto& [level, k] : levels) by_options[k.options][level] = k;
-  const KrylovByLevel* widest = nullptr;  // "" (the defaults) sorts first, so it wins a tie
-  for (const auto& [options, group] : by_options)
-    if (group.size() >= 2 && (!widest || group.size() > widest->size())) widest = &group;
+  std::map<std::string, KrylovByLevel> by_settings;
+  for (const auto& [level, k] : levels)
+    by_settings[k.settings.empty() ? "options: " + k.options : "settings: " + k.settings][level] = k;
+  auto without_options = [](const KrylovByLevel& group) {
+    for (const auto& [level, k] : group)
+      if (!k.options.empty()) return false;
+    return true;
+  };
+  const KrylovByLevel* widest = nullptr;
+  for (const auto& [key, group] : by_settings)
+    if (group.size() >= 2 && (!widest || group.size() > widest->size() ||
+                              (group.size() == widest->size() && without_options(group) && !without_options(*widest))))
+      widest = &group;
   if (!widest) return "—";
   const auto& [first, coarsest] = *widest->begin();
   const auto& [last, finest] = *widest->rbegin();
@@ -135,12 +145,12 @@ std::string krylov_growth_text(const KrylovByLevel& levels) {
   return widest->size() == levels.size() ? growth : fmt::format("{} (L{} to L{})", growth, first, last);
 }
 
-std::string krylov_growth_section(const CsvTable& runs) {
+std::string krylov_growth_section(const CsvTable& runs, const std::string& out_dir) {
   std::map<std::pair<std::string, std::string>, KrylovByLevel> series;  // (scene, solver) -> levels
   for (const auto& r : runs.rows)
     if (r.at("status") == "ok" && number(r, "krylov_per_linear_solve") > 1)
       series[{r.at("scene"), r.at("solver")}][static_cast<int>(number(r, "level"))] = {
-          number(r, "krylov_per_linear_solve"), extra_petsc_options(r)};
+          number(r, "krylov_per_linear_solve"), extra_petsc_options(r), run_backend_settings(out_dir, r)};
   std::string rows;
   for (const auto& [key, levels] : series)
     if (levels.size() >= 2)
@@ -148,8 +158,8 @@ std::string krylov_growth_section(const CsvTable& runs) {
                           krylov_growth_text(levels));
   if (rows.empty()) return "";
   return "\n## Krylov iterations per Newton step across mesh levels\n\nGrowth: finest / coarsest level among "
-         "the levels run with the same PETSc options (options beyond the backend's defaults are named beside "
-         "their level; they can change the Krylov method itself).\n\n| scene | solver | per level | growth |\n"
+         "the levels whose runs had the same PETSc settings (the backend's defaults of the version that ran each, "
+         "with the options the sweep gave on top; options beyond the defaults are named beside their level).\n\n| scene | solver | per level | growth |\n"
          "|---|---|---|---|\n" +
          rows;
 }

@@ -30,11 +30,13 @@ double log_log_slope(const std::vector<double>& x, const std::vector<double>& y)
 // <scene>-peak-memory.svg and <scene>-krylov.svg into out_dir.
 std::string scaling_section(const CsvTable& runs, const std::string& scene, const std::string& out_dir);
 
-// Krylov iterations per Newton step of one backend at one mesh level, and the PETSc options
-// its run there was given beyond the backend's defaults.
+// Krylov iterations per Newton step of one backend at one mesh level, the PETSc options its
+// run there was given beyond the backend's defaults, and the settings it ran with (those
+// defaults with the options on top: run_settings.hpp; "" when its metrics are missing).
 struct LevelKrylov {
   double per_newton_step = 0;
   std::string options;
+  std::string settings;
 };
 using KrylovByLevel = std::map<int, LevelKrylov>;
 
@@ -43,14 +45,17 @@ using KrylovByLevel = std::map<int, LevelKrylov>;
 std::string krylov_per_level_text(const KrylovByLevel& levels);
 
 // The count's growth from the coarsest to the finest level among levels run with the same
-// options: "1.80"; "1.23 (L0 to L1)" when those are not all the levels; "—" when no two
-// levels share their options. Of several such sets, the one spanning the most levels (the
-// defaults on a tie). Other options can change the Krylov method itself (a shorter GMRES
-// restart at the finest level, say), and a growth across them would measure that change.
+// settings (levels whose settings are unknown: with the same options): "1.80"; "1.23 (L0 to
+// L1)" when those are not all the levels; "—" when no two levels share them. Of several such
+// sets, the one spanning the most levels (on a tie, one run without extra options). Other
+// settings can change the Krylov method itself (a shorter GMRES restart at the finest level,
+// say), and a growth across them would measure that change; the same settings reached once
+// through the defaults and once through an option are the same method.
 std::string krylov_growth_text(const KrylovByLevel& levels);
 
 // The sweep's "Krylov iterations per Newton step across mesh levels": a row per scene and
 // iterative backend with finished runs at two or more levels; empty when there is none.
-std::string krylov_growth_section(const CsvTable& runs);
+// Each run's settings are read from its metrics.toml under out_dir.
+std::string krylov_growth_section(const CsvTable& runs, const std::string& out_dir);
 
 }  // namespace stiction::harness

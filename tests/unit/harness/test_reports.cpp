@@ -9,6 +9,7 @@
 #include "csv_table.hpp"
 #include "paper_tables.hpp"
 #include "run_metrics.hpp"
+#include "run_settings.hpp"
 #include "scaling_plots.hpp"
 
 namespace stiction::harness {
@@ -61,7 +62,7 @@ TEST(ScalingPlots, KrylovGrowthOnlyBetweenLevelsRunWithTheSameOptions) {
       "block-strips,1,lu-mumps,ok,1.0,\n";
   const fs::path csv = fs::temp_directory_path() / "stiction-krylov-growth-test.csv";
   std::ofstream(csv) << runs_csv;
-  const std::string md = krylov_growth_section(read_csv(csv.string()));
+  const std::string md = krylov_growth_section(read_csv(csv.string()), fs::temp_directory_path().string());
   EXPECT_NE(md.find("| block-strips | schur-amg | L0: 47.4; L1: 58.5; L2: 85.3 (" + restart + ") | 1.23 (L0 to L1) |"),
             std::string::npos)
       << md;
@@ -72,6 +73,39 @@ TEST(ScalingPlots, KrylovGrowthOnlyBetweenLevelsRunWithTheSameOptions) {
 void write(const fs::path& p, const std::string& text) {
   fs::create_directories(p.parent_path());
   std::ofstream(p) << text;
+}
+
+// The settings a run had are its version's defaults with the sweep's options on top: a
+// GMRES(50) given on the command line at level 2 and a GMRES(50) that was the default when
+// levels 0 and 1 ran are one method, and the growth spans all three; a level run with the
+// older default GMRES(100) is left out.
+TEST(ScalingPlots, KrylovGrowthBetweenLevelsOfTheSameSettingsHoweverTheyWereGiven) {
+  EXPECT_EQ(effective_backend_settings("# comment -x 1\n-ksp_type gmres\n-ksp_gmres_restart 100  # GMRES(100)\n"
+                                       "-pc_sor_omega -1\n-pc_view\n-schur_amg_ksp_gmres_restart 50\n",
+                                       "schur-amg"),
+            "-ksp_gmres_restart 50 -ksp_type gmres -pc_sor_omega -1 -pc_view");
+
+  const std::string restart = "-schur_amg_ksp_gmres_restart 50";
+  const fs::path dir = fs::temp_directory_path() / "stiction-krylov-settings-test";
+  fs::remove_all(dir);
+  auto metrics = [&](int level, const std::string& options) {
+    write(dir / "runs" / ("block-strips-L" + std::to_string(level) + "-schur-amg") / "metrics.toml",
+          "[run]\nbackend_options = '''\n-ksp_type gmres\n" + options + "'''\n");
+  };
+  metrics(0, "-ksp_gmres_restart 50\n");
+  metrics(1, "-ksp_gmres_restart 50\n");
+  metrics(2, "-ksp_gmres_restart 100\n" + restart + "\n");
+  metrics(3, "-ksp_gmres_restart 100\n");
+  write(dir / "runs.csv",
+        "scene,level,solver,status,krylov_per_linear_solve,petsc_options\n"
+        "block-strips,0,schur-amg,ok,48.3,\n"
+        "block-strips,1,schur-amg,ok,63.0,\n"
+        "block-strips,2,schur-amg,ok,85.3," + restart + "\n"
+        "block-strips,3,schur-amg,ok,99.0,\n");
+  const std::string md = krylov_growth_section(read_csv((dir / "runs.csv").string()), dir.string());
+  EXPECT_NE(md.find("| L0: 48.3; L1: 63.0; L2: 85.3 (" + restart + "); L3: 99.0 | 1.77 (L0 to L2) |"), std::string::npos)
+      << md;
+  fs::remove_all(dir);
 }
 
 // A fresh sweep directory `name` under the temporary directory, holding runs.csv.
