@@ -63,12 +63,16 @@ std::string time_left(const std::vector<BenchRun>& runs, size_t current, double 
     left += k == current ? std::max(t - elapsed, 0.0) : t;
   }
   const auto runs_text = [](int n) { return fmt::format("{} run{}", n, n > 1 ? "s" : ""); };
+  // Minutes, or seconds under a minute: a 20-second estimate is not "0 min".
+  const auto duration = [](double seconds) {
+    return seconds < 59.5 ? fmt::format("{:.0f} s", seconds) : fmt::format("{:.0f} min", seconds / 60);
+  };
   // Before any run has finished nothing is known, and "0 min left" would mislead.
   if (unknown == remaining) return fmt::format("time left not yet estimable ({} to go)", runs_text(remaining));
-  std::string text = fmt::format("about {:.0f} min left", left / 60);
+  std::string text = fmt::format("about {} left", duration(left));
   if (unknown) text += fmt::format(" + {} not yet estimable", runs_text(unknown));
   // A run past its estimate counts nothing more, which alone would read as a sweep about to end.
-  if (overrun_estimate > 0) text += fmt::format(" (this run past its estimate of {:.0f} min)", overrun_estimate / 60);
+  if (overrun_estimate > 0) text += fmt::format(" (this run past its estimate of {})", duration(overrun_estimate));
   return text;
 }
 

@@ -41,5 +41,14 @@ TEST(BenchEstimate, TimeLeftSubtractsTheCurrentRunsElapsedTimeAndCountsTheUnknow
   EXPECT_EQ(time_left(runs, 1, 1000.0, finished), "about 30 min left (this run past its estimate of 15 min)");
 }
 
+// Under a minute the figures are seconds: a 15 x 2 s = 30 s estimate is not "0 min".
+TEST(BenchEstimate, UnderAMinuteInSeconds) {
+  FinishedRuns finished;
+  finished.add({"a", "schur-amg", 0}, 2.0);
+  const std::vector<BenchRun> runs{{"a", "schur-amg", 0}, {"a", "schur-amg", 1}};
+  EXPECT_EQ(time_left(runs, 1, 10.0, finished), "about 20 s left");
+  EXPECT_EQ(time_left(runs, 1, 45.0, finished), "about 0 s left (this run past its estimate of 30 s)");
+}
+
 }  // namespace
 }  // namespace stiction::harness
