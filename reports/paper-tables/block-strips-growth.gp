@@ -9,7 +9,7 @@ set output 'block-strips-time-per-solve.svg'
 set ylabel 's / linear solve (set-up + Krylov)'
 set title 'block-strips: time per linear solve'
 plot data index 0 using 1:2 with linespoints pt 7 lw 2 title 'fieldsplit-schur (p = 1.28)', \
-     data index 1 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.72)', \
+     data index 1 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.71)', \
      data index 2 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.46)', \
      data index 3 using 1:2 with linespoints pt 7 lw 2 title 'schur-amg (p = 1.29)', \
      data index 4 using 1:2 with linespoints pt 7 lw 2 title 'schur-gamg (p = 1.27)'
