@@ -18,7 +18,7 @@ namespace {
 struct Point {
   int level;
   double n, seconds_per_solve, peak_mb, krylov;
-  std::string options, settings;
+  std::string options;
 };
 
 }  // namespace
@@ -55,8 +55,7 @@ std::string scaling_section(const CsvTable& runs, const std::string& scene, cons
     const int level = static_cast<int>(number(r, "level"));
     by_solver[r.at("solver")][level] = {level, number(r, "unknowns") + number(r, "multipliers"),
                                         number(r, "seconds_per_linear_solve"), number(r, "peak_rss_mb"),
-                                        number(r, "krylov_per_linear_solve"), extra_petsc_options(r),
-                                        run_backend_settings(out_dir, r)};
+                                        number(r, "krylov_per_linear_solve"), extra_petsc_options(r)};
   }
   for (auto it = by_solver.begin(); it != by_solver.end();)
     it = it->second.size() < 2 ? by_solver.erase(it) : std::next(it);
@@ -77,7 +76,7 @@ std::string scaling_section(const CsvTable& runs, const std::string& scene, cons
     data += fmt::format("# {}\n# n s_per_solve peak_mb level krylov_per_solve\n", solver);
     for (const auto& [level, p] : points) {
       n.push_back(p.n), t.push_back(p.seconds_per_solve), m.push_back(p.peak_mb);
-      krylov[level] = {p.krylov, p.options, p.settings};
+      krylov[level] = {p.krylov, p.options};  // shown with its options; growth is krylov_growth_section's
       levels += fmt::format("{}{}", levels.empty() ? "" : ", ", level);
       data += fmt::format("{:.0f} {:.6g} {:.6g} {} {:.3f}\n", p.n, p.seconds_per_solve, p.peak_mb, level, p.krylov);
     }
