@@ -271,6 +271,8 @@ std::string sweep_header(const BenchOptions& o, const RunInfo& info, const Child
             (o.krylov_rtol < 0 ? std::string("as each scene sets it (newton.krylov_rtol, else the backend's)")
                                : fmt::format("{:g}", o.krylov_rtol)) +
             "\n";
+  header += "# gmres restart: as each scene sets it (newton.krylov_restart, else the backend's options), unless a "
+            "petsc option above gives it\n";
   return header;
 }
 

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <sstream>
 
 #include "checkpoint.hpp"
 #include "common/error.hpp"
@@ -35,6 +36,25 @@ void print_state_change(const nonlinear::QuasiStaticSolver::StateChange& c, cons
              n.position[0], n.position[1], n.position[2]);
 }
 
+// Whether the backend's option -<prefix><key> was given on the command line or in
+// PETSC_OPTIONS: the user's choice, over the scene's.
+bool backend_option_given(const SolveOptions& o, const std::string& key) {
+  const char* environment = std::getenv("PETSC_OPTIONS");
+  std::istringstream words(o.petsc_options + " " + (environment ? environment : ""));
+  const std::string full = "-" + solvers::options_prefix(o.solver) + key;
+  for (std::string word; words >> word;)
+    if (word == full) return true;
+  return false;
+}
+
+// The scene's GMRES restart as the options text it stands for, for a backend whose options
+// set one (a GMRES backend); empty otherwise.
+std::string scene_restart_options(const SolveOptions& o, const nonlinear::NewtonSettings& newton) {
+  if (newton.krylov_restart <= 0 || solvers::default_options(o.solver).find("-ksp_gmres_restart") == std::string::npos)
+    return "";
+  return fmt::format("# the scene's newton.krylov_restart\n-ksp_gmres_restart {}\n", newton.krylov_restart);
+}
+
 // The comment lines every table of the run starts with: provenance, scene, bodies, mesh and
 // unknowns (whole), solver and Newton settings.
 std::string describe_run(const SolveOptions& o, const RunInfo& info, const scene::SceneView& view,
@@ -48,10 +68,14 @@ std::string describe_run(const SolveOptions& o, const RunInfo& info, const scene
     header += fmt::format("# body {}: {}\n", scene.body_names[b], scene.material_of_body[b]);
   header += fmt::format("# mesh: {} vertices, {} cells; unknowns: u_l {}, u_q {}, total {}\n", view.n_vertices,
                         view.n_cells, view.n_linear, view.n_quadratic, view.n_dofs());
-  header += fmt::format("# solver: {}; newton atol {:g}, rtol {:g}, max_iterations {}, forcing {}, krylov rtol {}\n",
+  header += fmt::format("# solver: {}; newton atol {:g}, rtol {:g}, max_iterations {}, forcing {}, krylov rtol {}, "
+                        "gmres restart {}\n",
                         o.solver, newton.atol, newton.rtol, newton.max_iterations, nonlinear::to_string(newton.forcing),
                         newton.krylov_rtol > 0 ? fmt::format("{:g} ({})", newton.krylov_rtol, krylov_rtol_origin)
-                                               : std::string("the backend's"));
+                                               : std::string("the backend's"),
+                        scene_restart_options(o, newton).empty()
+                            ? std::string("the backend's")
+                            : fmt::format("{} (scene)", newton.krylov_restart));
   return header;
 }
 
@@ -70,17 +94,19 @@ std::string describe_processes(const RunScene& run, int processes, const std::st
 }
 
 // The command line's Newton settings over the scene's; returns where the Krylov tolerance
-// comes from. Its precedence: --krylov-rtol, then a -<backend>_ksp_rtol given on the
-// command line, then the scene's newton.krylov_rtol, then the backend's options file.
+// comes from. Its precedence: --krylov-rtol, then a -<backend>_ksp_rtol given by the user
+// (command line, PETSC_OPTIONS), then the scene's newton.krylov_rtol, then the backend's
+// options file. The GMRES restart's: -<backend>_ksp_gmres_restart given by the user, then
+// the scene's newton.krylov_restart, then the options file.
 std::string apply_newton_options(const SolveOptions& o, nonlinear::NewtonSettings& newton) {
   if (!o.forcing.empty()) newton.forcing = nonlinear::forcing_from_string(o.forcing);
   if (o.newton_rtol >= 0) newton.rtol = o.newton_rtol;
+  if (backend_option_given(o, "ksp_gmres_restart")) newton.krylov_restart = 0;
   if (o.krylov_rtol >= 0) {
     newton.krylov_rtol = o.krylov_rtol;
     return "--krylov-rtol";
   }
-  if (o.petsc_options.find("-" + solvers::options_prefix(o.solver) + "ksp_rtol ") != std::string::npos)
-    newton.krylov_rtol = 0;
+  if (backend_option_given(o, "ksp_rtol")) newton.krylov_rtol = 0;
   return "scene";
 }
 
@@ -96,11 +122,13 @@ Checkpoint read_resume(const SolveOptions& o, const RunScene& run) {
 // The --metrics record; a restarted run's record continues the earlier segments'.
 std::unique_ptr<RunRecorder> make_recorder(const SolveOptions& o, const RunScene& run, int processes,
                                            const Checkpoint* resume, std::chrono::steady_clock::time_point t_start) {
-  // The options the backend ran with: its defaults, then PETSC_OPTIONS, then the command line's.
+  // The options the backend ran with: its defaults, then the scene's restart, then
+  // PETSC_OPTIONS, then the command line's (a later option of the same key won).
   const char* environment = std::getenv("PETSC_OPTIONS");
   const std::string from_environment =
       environment && *environment ? fmt::format("# PETSC_OPTIONS\n{}\n", environment) : std::string();
-  RunSummary base{o.solver, solvers::default_options(o.solver) + from_environment + o.petsc_options};
+  RunSummary base{o.solver, solvers::default_options(o.solver) + scene_restart_options(o, run.scene->newton) +
+                                from_environment + o.petsc_options};
   base.processes = processes;
   return std::make_unique<RunRecorder>(
       o.metrics_path, *run.view, base, PETSC_COMM_WORLD,

@@ -156,6 +156,8 @@ void KspSolver::setup(const nonlinear::NewtonSystem& system) {
   const double heap_before = heap_in_use_mb();
   configure(system);
   STICTION_PETSC(KSPSetFromOptions(ksp_));
+  // A no-op for a KSP that is not GMRES or FGMRES (PETSc's KSPGMRESSetRestart tries the method).
+  if (krylov_restart_ > 0) STICTION_PETSC(KSPGMRESSetRestart(ksp_, krylov_restart_));
   install_stagnation_test();
   if (estimates_singular_values()) STICTION_PETSC(KSPSetComputeSingularValues(ksp_, PETSC_TRUE));
   // A failed factorisation or preconditioner set-up (out of memory, zero pivot) is a
@@ -198,6 +200,11 @@ nonlinear::LinearSolveStats KspSolver::solve(const nonlinear::NewtonSystem& syst
     STICTION_PETSC(KSPGetTolerances(ksp_, &rtol, &abstol, &dtol, &max_it));
     s.extra["ksp_rtol"] = rtol;
     s.extra["ksp_max_it"] = static_cast<double>(max_it);
+  }
+  if (type == std::string(KSPGMRES) || type == std::string(KSPFGMRES)) {
+    PetscInt restart;
+    STICTION_PETSC(KSPGMRESGetRestart(ksp_, &restart));
+    s.extra["ksp_gmres_restart"] = static_cast<double>(restart);
   }
   const auto t0 = std::chrono::steady_clock::now();
   STICTION_PETSC(KSPSolve(ksp_, system.rhs, x));
@@ -303,6 +310,7 @@ bool KspSolver::continue_longer(const nonlinear::NewtonSystem& system, Vec x, no
   nonlinear::LinearSolveStats more = solve(system, x);
   more.extra["krylov_iterations_before_continuing"] = s.iterations;
   more.extra["krylov_continued_restart"] = static_cast<double>(longer);
+  more.extra["ksp_gmres_restart"] = static_cast<double>(m);  // the solve's own restart, before the continuation's
   more.iterations += s.iterations;
   more.solve_seconds += s.solve_seconds;
   more.initial_residual = s.initial_residual;

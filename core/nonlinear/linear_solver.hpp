@@ -43,6 +43,9 @@ public:
   // Relative tolerance of the next solve: the inexact-Newton forcing term. Iterative
   // backends apply it after set-up (it overrides their -ksp_rtol); direct ones ignore it.
   virtual void set_relative_tolerance(double rtol) {}
+  // Restart of the GMRES solves from the next set-up on, in place of the backend's
+  // -ksp_gmres_restart (0: the backend's). Backends without a restarted Krylov method ignore it.
+  virtual void set_krylov_restart(int restart) {}
   // One application of the preconditioner of the last set-up (for a direct backend, the
   // triangular solves): out = P^-1 in. For benchmarks and tests.
   virtual void apply_preconditioner(Vec in, Vec out) const = 0;

@@ -127,6 +127,7 @@ QuasiStaticSolver::QuasiStaticSolver(MPI_Comm comm, const ElasticityProblem& pro
       u_(pattern_),
       lambda_(constraints_.n_multipliers(), 0.0) {
   constraints_.distribute(layout_, problem.space->n_dofs());
+  linear_.set_krylov_restart(settings_.krylov_restart);
 }
 
 std::vector<PetscInt> QuasiStaticSolver::unknowns_read() const {

@@ -88,6 +88,10 @@ struct NewtonSettings {
   // backend's -ksp_rtol; under Eisenstat-Walker with contact, the cap on its forcing term
   // (0: the backend's -ksp_rtol, and the cap kContactForcingCap).
   double krylov_rtol = 0;
+  // Restart of every GMRES backend's outer Krylov solve, in place of its -ksp_gmres_restart
+  // (0: the backend's). The basis is restart + 1 vectors of the system's size: at millions of
+  // unknowns it is a large share of an iterative backend's memory, on a small 2D scene none.
+  int krylov_restart = 0;
   int max_cuts = 6;             // halvings of a failed load increment (0: a failed step stops the run)
   // Converged parts at a cut size before the run tries the size above again: 2, doubled each
   // time the size above, grown back to, fails again, up to this (2: always 2). Measured on

@@ -170,6 +170,9 @@ struct Schemas {
                 "relative tolerance of every Krylov solve, in place of the backend's -ksp_rtol (0: the backend's; "
                 "with eisenstat-walker, the cap on its forcing term under contact)",
                 false, nd.krylov_rtol},
+               {"krylov_restart", VT::Integer,
+                "restart of every GMRES backend's Krylov solve, in place of its -ksp_gmres_restart (0: the backend's)",
+                false, std::int64_t{nd.krylov_restart}},
                {"state_update_tolerance", VT::Float,
                 "contact states change only at iterates that solve their states to this relative residual (0: after "
                 "every solve, as the paper)",
@@ -715,6 +718,7 @@ std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& o
   s.newton.min_det_f_ratio = get_float(nw, S.newton, "min_det_f_ratio");
   s.newton.forcing = nonlinear::forcing_from_string(get_string(nw, S.newton, "forcing"));
   s.newton.krylov_rtol = get_float(nw, S.newton, "krylov_rtol");
+  s.newton.krylov_restart = static_cast<int>(get_int(nw, S.newton, "krylov_restart"));
   auto& as = s.newton.active_set;
   as.update_tolerance = get_float(nw, S.newton, "state_update_tolerance");
   as.max_held = static_cast<int>(get_int(nw, S.newton, "max_held_iterations"));
@@ -724,9 +728,10 @@ std::unique_ptr<Scene> build_scene(const std::string& text, const std::string& o
   s.newton.max_regrow_wait = static_cast<int>(get_int(sub(root, "load"), S.load, "max_regrow_wait"));
   if (const auto quick = sub(root, "load")["quick_until"].value<double>()) s.quick_until = *quick;
   if (!(s.newton.atol >= 0 && s.newton.rtol >= 0 && s.newton.max_iterations >= 1 && s.newton.krylov_rtol >= 0 &&
-        s.newton.krylov_rtol < 1 && s.newton.min_det_f_ratio >= 0 && s.newton.min_det_f_ratio < 1))
-    throw Error(fmt::format("{}: newton tolerances must be >= 0 (krylov_rtol and min_det_f_ratio below 1) and "
-                            "max_iterations >= 1",
+        s.newton.krylov_rtol < 1 && s.newton.min_det_f_ratio >= 0 && s.newton.min_det_f_ratio < 1 &&
+        s.newton.krylov_restart >= 0))
+    throw Error(fmt::format("{}: newton tolerances and krylov_restart must be >= 0 (krylov_rtol and min_det_f_ratio "
+                            "below 1) and max_iterations >= 1",
                             origin));
   if (!(as.update_tolerance >= 0 && as.max_held >= 0 && as.cycle_remedies >= 0 && as.remedy_factor > 0 &&
         as.remedy_factor < 1 && s.newton.max_cuts >= 0 && s.newton.max_regrow_wait >= 2))

@@ -16,6 +16,7 @@
 #include <fstream>
 #include <map>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -27,6 +28,7 @@
 #include "checkpoint.hpp"
 #include "csv_table.hpp"
 #include "run_info.hpp"
+#include "run_settings.hpp"
 #include "vtu_reader.hpp"
 
 namespace {
@@ -535,6 +537,62 @@ TEST_F(StictionCli, KrylovToleranceComesFromTheCommandLineThenTheSceneThenTheBac
   EXPECT_NE(header_line("flag").find("krylov rtol 1e-05 (--krylov-rtol)"), std::string::npos) << header_line("flag");
   EXPECT_LE(worst_relative_residual("flag"), 1e-5);
   EXPECT_GT(worst_relative_residual("flag"), 1e-7);
+}
+
+// The GMRES restart of a run: a -<backend>_ksp_gmres_restart given by the user first, then
+// the scene's newton.krylov_restart, then the backend's options file (100). The run header
+// says which applies, every solve records the restart its KSP ran, and the run's recorded
+// backend options give it (the sweep report compares levels by them).
+TEST_F(StictionCli, KrylovRestartComesFromTheCommandLineThenTheSceneThenTheBackend) {
+  const fs::path scene = SceneVariant().append("\n[newton]\nkrylov_restart = 7\n").write(dir_, "restart.toml");
+  struct Ran {
+    std::string header, settings;
+    std::set<double> restarts;  // the ksp_gmres_restart of the solves
+    size_t solves = 0;
+  };
+  auto run = [&](const std::string& scene_name, const std::string& solver, std::vector<std::string> more) {
+    const std::string out = solver + "-" + std::to_string(more.size()) + "-" + fs::path(scene_name).stem().string();
+    std::vector<std::string> args{"solve", scene_name, "--solver", solver, "--quiet", "--no-vtu", "--out", out,
+                                  "--metrics", (dir_ / (out + ".toml")).string()};
+    args.insert(args.end(), more.begin(), more.end());
+    const CliRun r = CliRun::of(args, dir_);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    Ran ran;
+    std::ifstream steps(dir_ / out / "steps.csv");
+    for (std::string line; std::getline(steps, line);)
+      if (line.rfind("# solver: ", 0) == 0) ran.header = line;
+    const toml::table metrics = toml::parse_file((dir_ / (out + ".toml")).string());
+    ran.settings = stiction::harness::effective_backend_settings(
+        metrics["run"]["backend_options"].value_or(std::string()), solver);
+    if (const auto* solves = metrics["linear_solve"].as_array())
+      for (const auto& s : *solves) {
+        ++ran.solves;
+        if (const auto m = (*s.as_table())["ksp_gmres_restart"].value<double>()) ran.restarts.insert(*m);
+      }
+    return ran;
+  };
+
+  const Ran from_scene = run(scene.string(), "schur-amg", {});
+  EXPECT_NE(from_scene.header.find("gmres restart 7 (scene)"), std::string::npos) << from_scene.header;
+  ASSERT_GT(from_scene.solves, 0u);
+  EXPECT_EQ(from_scene.restarts, std::set<double>{7});
+  EXPECT_NE(from_scene.settings.find("-ksp_gmres_restart 7 "), std::string::npos) << from_scene.settings;
+
+  const Ran from_user = run(scene.string(), "schur-amg", {"-schur_amg_ksp_gmres_restart", "12"});
+  EXPECT_NE(from_user.header.find("gmres restart the backend's"), std::string::npos) << from_user.header;
+  EXPECT_EQ(from_user.restarts, std::set<double>{12});
+  EXPECT_NE(from_user.settings.find("-ksp_gmres_restart 12 "), std::string::npos) << from_user.settings;
+
+  const Ran from_backend = run("cantilever-2d", "schur-amg", {});
+  EXPECT_EQ(from_backend.restarts, std::set<double>{100});
+  EXPECT_NE(from_backend.settings.find("-ksp_gmres_restart 100 "), std::string::npos) << from_backend.settings;
+
+  // A direct backend has no restart: the scene's is neither announced nor recorded.
+  const Ran direct = run(scene.string(), "lu-mumps", {});
+  EXPECT_NE(direct.header.find("gmres restart the backend's"), std::string::npos) << direct.header;
+  ASSERT_GT(direct.solves, 0u);
+  EXPECT_TRUE(direct.restarts.empty());
+  EXPECT_EQ(direct.settings.find("gmres_restart"), std::string::npos) << direct.settings;
 }
 
 // The speed/accuracy sweep on a scene without contact, short: a lu-mumps reference with a

@@ -40,6 +40,15 @@ TEST(Scene, DefaultsComeFromTheSchema) {
   EXPECT_EQ(s->mesh.n_cells(), 8);
 }
 
+// newton.krylov_restart: 0 (the backend's) unless the scene sets it; a negative one is bad input.
+TEST(Scene, KrylovRestartIsTheBackendsUnlessTheSceneSetsIt) {
+  EXPECT_EQ(build_scene(kMinimal, "test.toml", ".")->newton.krylov_restart, 0);
+  EXPECT_EQ(build_scene(kMinimal + "\n[newton]\nkrylov_restart = 30\n", "test.toml", ".")->newton.krylov_restart, 30);
+  EXPECT_NE(error_of(kMinimal + "\n[newton]\nkrylov_restart = -1\n").find("krylov_restart must be >= 0"),
+            std::string::npos);
+  EXPECT_EQ(harness::open_scene("block-strips", 0, {})->newton.krylov_restart, 50);
+}
+
 TEST(Scene, LevelRefines) {
   auto s = build_scene(kMinimal, "test.toml", ".", 2);
   EXPECT_EQ(s->mesh.n_cells(), 8 * 16);
