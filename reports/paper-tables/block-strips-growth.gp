@@ -12,15 +12,15 @@ plot data index 0 using 1:2 with linespoints pt 7 lw 2 title 'fieldsplit-schur (
      data index 1 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.71)', \
      data index 2 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.46)', \
      data index 3 using 1:2 with linespoints pt 7 lw 2 title 'schur-amg (p = 1.29)', \
-     data index 4 using 1:2 with linespoints pt 7 lw 2 title 'schur-gamg (p = 1.27)'
+     data index 4 using 1:2 with linespoints pt 7 lw 2 title 'schur-gamg (p = 1.30)'
 set output 'block-strips-peak-memory.svg'
 set ylabel 'peak resident memory (MB)'
 set title 'block-strips: peak memory'
 plot data index 0 using 1:3 with linespoints pt 7 lw 2 title 'fieldsplit-schur (p = 0.82)', \
-     data index 1 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.22)', \
+     data index 1 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.23)', \
      data index 2 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.11)', \
-     data index 3 using 1:3 with linespoints pt 7 lw 2 title 'schur-amg (p = 0.78)', \
-     data index 4 using 1:3 with linespoints pt 7 lw 2 title 'schur-gamg (p = 0.77)'
+     data index 3 using 1:3 with linespoints pt 7 lw 2 title 'schur-amg (p = 0.79)', \
+     data index 4 using 1:3 with linespoints pt 7 lw 2 title 'schur-gamg (p = 0.78)'
 unset logscale
 set xlabel 'mesh level'
 set xtics 1
