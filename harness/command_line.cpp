@@ -2,6 +2,18 @@
 
 namespace stiction::harness {
 
+namespace {
+
+// --forcing and --krylov-rtol, which solve and bench share (their help texts differ).
+void add_krylov_tolerance_options(CLI::App* cmd, std::string& forcing, const std::string& forcing_help,
+                                  double& krylov_rtol, const std::string& krylov_rtol_help) {
+  cmd->add_option("--forcing", forcing, forcing_help + ": fixed or eisenstat-walker")
+      ->check(CLI::IsMember({"fixed", "eisenstat-walker"}));
+  cmd->add_option("--krylov-rtol", krylov_rtol, krylov_rtol_help)->check(CLI::Range(0.0, 1.0));
+}
+
+}  // namespace
+
 CommandLine::CommandLine()
     : app{"stiction: large-deformation frictional contact by FEM, and a benchmark of the linear solvers of its "
           "Newton systems"} {
@@ -27,13 +39,9 @@ void CommandLine::declare_solve() {
   solve_cmd->add_flag("--quiet", solve.quiet, "no progress on stderr");
   solve_cmd->add_option("--metrics", solve.metrics_path, "write a TOML record of the run (used by `stiction bench`)");
   solve_cmd->add_option("--record", solve.record_dir, "record every Newton system here (see `stiction replay`)");
-  solve_cmd->add_option("--forcing", solve.forcing, "Krylov tolerance per Newton step: fixed or eisenstat-walker")
-      ->check(CLI::IsMember({"fixed", "eisenstat-walker"}));
-  solve_cmd
-      ->add_option("--krylov-rtol", solve.krylov_rtol,
-                   "relative tolerance of every Krylov solve, overriding the scene's newton.krylov_rtol (0: the "
-                   "backend's -ksp_rtol)")
-      ->check(CLI::Range(0.0, 1.0));
+  add_krylov_tolerance_options(solve_cmd, solve.forcing, "Krylov tolerance per Newton step", solve.krylov_rtol,
+                               "relative tolerance of every Krylov solve, overriding the scene's newton.krylov_rtol "
+                               "(0: the backend's -ksp_rtol)");
   solve_cmd->add_option("--set", solve.overrides,
                         "set a scene key, KEY=VALUE (contact[0].friction=0.6, newton.max_iterations=40); repeatable");
   solve_cmd
@@ -77,12 +85,8 @@ void CommandLine::declare_bench() {
   bench_cmd->add_flag("--quick", bench.quick, "every scene's short version (stiction solve --quick)");
   bench_cmd->add_option("--time-limit", bench.time_limit_seconds, "wall-time limit per run, seconds (default 3600)");
   bench_cmd->add_option("--memory-limit-mb", bench.memory_limit_mb, "resident-memory limit per run (default 90% of RAM)");
-  bench_cmd->add_option("--forcing", bench.forcing, "Newton forcing for every run: fixed or eisenstat-walker")
-      ->check(CLI::IsMember({"fixed", "eisenstat-walker"}));
-  bench_cmd
-      ->add_option("--krylov-rtol", bench.krylov_rtol,
-                   "Krylov tolerance for every run (stiction solve --krylov-rtol; default: each scene's)")
-      ->check(CLI::Range(0.0, 1.0));
+  add_krylov_tolerance_options(bench_cmd, bench.forcing, "Newton forcing for every run", bench.krylov_rtol,
+                               "Krylov tolerance for every run (stiction solve --krylov-rtol; default: each scene's)");
 }
 
 void CommandLine::declare_tradeoff() {
