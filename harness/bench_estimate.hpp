@@ -31,8 +31,9 @@ struct FinishedRuns {
 // Estimated wall time of a run that has not finished, in seconds (0: no basis yet).
 double estimate_seconds(const BenchRun& run, const FinishedRuns& finished);
 
-// "about N min left" ("about N s left" under a minute) for runs[current..] (the current one `elapsed` seconds in), with the
-// runs that cannot be estimated yet counted apart, and a current run past its estimate named.
+// "about N min left" ("about N s left" under a minute) for runs[current..] (the current one
+// `elapsed` seconds in), with the runs that cannot be estimated yet counted apart, and a
+// current run past its estimate named.
 std::string time_left(const std::vector<BenchRun>& runs, size_t current, double elapsed, const FinishedRuns& finished);
 
 }  // namespace stiction::harness

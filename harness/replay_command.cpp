@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "common/error.hpp"
+#include "ksp_solver.hpp"
 #include "registry.hpp"
 #include "system_record.hpp"
 
@@ -29,14 +30,6 @@ ReplayedSolve replay_system(const RecordedSystem& r, nonlinear::LinearSolver& so
   return out;
 }
 
-bool krylov_rtol_given(const std::string& solver) {
-  std::string prefix = solver;
-  std::replace(prefix.begin(), prefix.end(), '-', '_');
-  PetscBool given = PETSC_FALSE;
-  STICTION_PETSC(PetscOptionsHasName(nullptr, nullptr, ("-" + prefix + "_ksp_rtol").c_str(), &given));
-  return given;
-}
-
 double replay_krylov_rtol(const std::string& choice, double recorded, bool rtol_given) {
   if (choice == "backend") return 0;
   if (choice == "recorded") return rtol_given ? 0 : recorded;
@@ -55,7 +48,7 @@ double replay_krylov_rtol(const std::string& choice, double recorded, bool rtol_
 double run_replay(const ReplayOptions& o, const RunInfo& info) {
   const auto dirs = recorded_system_dirs(o.record_dir);
   replay_krylov_rtol(o.krylov_rtol, 0, false);  // a bad choice ends the run before any solve
-  const bool rtol_given = krylov_rtol_given(o.solver);
+  const bool rtol_given = solvers::backend_option_given(o.solver, "ksp_rtol");
   auto solver = solvers::create_solver(o.solver, PETSC_COMM_WORLD);
   std::ofstream csv;
   if (!o.csv_path.empty()) {

@@ -27,9 +27,6 @@ struct ReplayedSolve {
   double relative_difference = 0;
 };
 ReplayedSolve replay_system(const RecordedSystem& record, nonlinear::LinearSolver& solver, double krylov_rtol);
-// Whether the options database names -<solver>_ksp_rtol: asked before the backend is
-// created, since the backend inserts its own defaults there.
-bool krylov_rtol_given(const std::string& solver);
 // The tolerance a system recorded at `recorded` (RecordedSystem::krylov_rtol) is replayed to
 // under ReplayOptions::krylov_rtol (0: the backend's own); throws on a choice that is
 // neither a name nor a number in (0, 1).

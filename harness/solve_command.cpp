@@ -8,7 +8,6 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <sstream>
 
 #include "checkpoint.hpp"
 #include "common/error.hpp"
@@ -34,17 +33,6 @@ void print_state_change(const nonlinear::QuasiStaticSolver::StateChange& c, cons
              "x ({:.6g}, {:.6g}, {:.6g})\n",
              c.step, c.iteration, c.constraint, c.node, view.whole_vertex(n.vertex), state(c.before), state(n.state), n.gap, n.normal, lt,
              n.position[0], n.position[1], n.position[2]);
-}
-
-// Whether the backend's option -<prefix><key> was given on the command line or in
-// PETSC_OPTIONS: the user's choice, over the scene's.
-bool backend_option_given(const SolveOptions& o, const std::string& key) {
-  const char* environment = std::getenv("PETSC_OPTIONS");
-  std::istringstream words(o.petsc_options + " " + (environment ? environment : ""));
-  const std::string full = "-" + solvers::options_prefix(o.solver) + key;
-  for (std::string word; words >> word;)
-    if (word == full) return true;
-  return false;
 }
 
 // The scene's GMRES restart as the options text it stands for, for a backend whose options
@@ -97,16 +85,17 @@ std::string describe_processes(const RunScene& run, int processes, const std::st
 // comes from. Its precedence: --krylov-rtol, then a -<backend>_ksp_rtol given by the user
 // (command line, PETSC_OPTIONS), then the scene's newton.krylov_rtol, then the backend's
 // options file. The GMRES restart's: -<backend>_ksp_gmres_restart given by the user, then
-// the scene's newton.krylov_restart, then the options file.
+// the scene's newton.krylov_restart, then the options file. Called before the backend is
+// created (solvers::backend_option_given).
 std::string apply_newton_options(const SolveOptions& o, nonlinear::NewtonSettings& newton) {
   if (!o.forcing.empty()) newton.forcing = nonlinear::forcing_from_string(o.forcing);
   if (o.newton_rtol >= 0) newton.rtol = o.newton_rtol;
-  if (backend_option_given(o, "ksp_gmres_restart")) newton.krylov_restart = 0;
+  if (solvers::backend_option_given(o.solver, "ksp_gmres_restart")) newton.krylov_restart = 0;
   if (o.krylov_rtol >= 0) {
     newton.krylov_rtol = o.krylov_rtol;
     return "--krylov-rtol";
   }
-  if (backend_option_given(o, "ksp_rtol")) newton.krylov_rtol = 0;
+  if (solvers::backend_option_given(o.solver, "ksp_rtol")) newton.krylov_rtol = 0;
   return "scene";
 }
 

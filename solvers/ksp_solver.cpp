@@ -66,6 +66,12 @@ std::string default_options(const std::string& name) {
   return out;
 }
 
+bool backend_option_given(const std::string& name, const std::string& key) {
+  PetscBool given = PETSC_FALSE;
+  STICTION_PETSC(PetscOptionsHasName(nullptr, nullptr, ("-" + options_prefix(name) + key).c_str(), &given));
+  return given;
+}
+
 namespace {
 
 // Sets each "-key [value]" line of an options file under the prefix, unless the user has

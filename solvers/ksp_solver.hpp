@@ -43,6 +43,9 @@ std::string options_prefix(const std::string& backend_name);
 std::string default_options(const std::string& backend_name);
 // The same on one line, without comments ("-ksp_type gmres -pc_type shell ...").
 std::string compact_options(const std::string& backend_name);
+// Whether the user gave the backend's option -<prefix><key> (on the command line or in
+// PETSC_OPTIONS): ask before the backend is created, which inserts its options file's defaults.
+bool backend_option_given(const std::string& backend_name, const std::string& key);
 
 class KspSolver : public nonlinear::LinearSolver {
 public:
