@@ -39,7 +39,7 @@ const char* kRunColumns =
     "scene,level,solver,processes,status,converged,reason,unknowns,unknowns_u_l,unknowns_u_q,unknowns_p,multipliers,vertices,"
     "cells,load_steps,"
     "load_steps_completed,newton_iterations,linear_solves,krylov_iterations,krylov_per_linear_solve,wall_seconds,"
-    "assembly_seconds,setup_seconds,solve_seconds,seconds_per_linear_solve,peak_rss_mb,peak_rss_mb_per_process,mumps_memory_mb,"
+    "assembly_seconds,contact_assembly_seconds,setup_seconds,solve_seconds,seconds_per_linear_solve,peak_rss_mb,peak_rss_mb_per_process,mumps_memory_mb,"
     "mumps_factor_fraction,amg_operator_complexity,krylov_rtol,mumps_ordering,newton_rtol,newton_forcing,petsc_options,"
     "detail";
 const char* kStepColumns =
@@ -206,13 +206,13 @@ double write_rows(const std::string& out, const BenchRun& run, const ChildResult
                           detail.empty() ? "" : "; ", continued->last_step, continued->segments + 1);
   const std::string row = fmt::format(
       "{},{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.2f},{:.3f},"
-      "{:.3f},{:.3f},{:.3f},{:.4f},"
+      "{:.3f},{:.3f},{:.3f},{:.3f},{:.4f},"
       "{:.1f},{:.1f},{:.0f},{},{:.3f},{},{},{},{},{},{}",
       run.scene, run.level, run.solver, run.processes, status, m["converged"].value<bool>().value_or(false) ? 1 : 0,
       csv_field(m["reason"].value<std::string>().value_or(status)), num("unknowns"), num("unknowns_u_l"),
       num("unknowns_u_q"), num("unknowns_p"), num("multipliers"), num("vertices"), num("cells"), num("load_steps"), num("load_steps_completed"), num("newton_iterations"), solves,
       num("krylov_iterations"), solves > 0 ? num("krylov_iterations") / solves : 0.0, wall,
-      num("assembly_seconds"), num("setup_seconds"), num("solve_seconds"),
+      num("assembly_seconds"), num("contact_assembly_seconds"), num("setup_seconds"), num("solve_seconds"),
       seconds_per_converged_solve(metrics["linear_solve"].as_array()), peak_total, peak_per_process,
       figures.mumps_memory_mb,
       figures.full_rank_entries > 0 ? fmt::format("{:.3f}", figures.factor_entries / figures.full_rank_entries) : "",
@@ -329,7 +329,8 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
     done.insert(key);
     if (row.at("status") == "ok")
       finished_runs.add({row.at("scene"), row.at("solver"), std::stoi(row.at("level")), std::stoi(processes)},
-                        std::strtod(row.at("wall_seconds").c_str(), nullptr));
+                        std::strtod(row.at("wall_seconds").c_str(), nullptr),
+                        load_step_fractions(run_directory(out, row) + "/steps.csv"));
   }
   const std::string steps_csv = out + "/steps.csv";
   if (!header.empty())
@@ -372,7 +373,7 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
       const int step = count_data_lines(run_dir + "/steps.csv");
       if (step != last_step || t - last_print > 30) {
         fmt::print(stderr, "bench [{}/{}] {} {} L{}{}: {} load steps done, {:.0f} s; {}\n", index, runs.size(),
-                   run.scene, run.solver, run.level, on, step, t, time_left(runs, position, t, finished_runs));
+                   run.scene, run.solver, run.level, on, step, t, time_left(runs, position, t, finished_runs, step));
         last_step = step;
         last_print = t;
       }
@@ -388,7 +389,7 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
                         launcher_for(run.processes));
     const double wall = write_rows(out, run, child, run_dir, options_for(o, run.solver), continued);
     const std::string status = solve_status(child, fs::exists(run_dir + "/metrics.toml"));
-    if (status == "ok") finished_runs.add(run, wall);
+    if (status == "ok") finished_runs.add(run, wall, load_step_fractions(run_dir + "/steps.csv"));
     fmt::print(stderr, "bench [{}/{}] {} {} L{}{}: {} in {:.1f} s, peak {:.0f} MB\n", index, runs.size(), run.scene,
                run.solver, run.level, on, status, wall, child.peak_rss_mb);
     write_bench_report(out);

@@ -51,13 +51,38 @@ double estimate_seconds(const BenchRun& run, const FinishedRuns& finished) {
   return n ? sum / n : 0;
 }
 
-std::string time_left(const std::vector<BenchRun>& runs, size_t current, double elapsed, const FinishedRuns& finished) {
+std::vector<double> load_step_fractions(const std::string& steps_csv) {
+  std::vector<double> cumulative;
+  double sum = 0;
+  for (const auto& row : read_csv(steps_csv).rows) cumulative.push_back(sum += number(row, "wall_seconds"));
+  if (!(sum > 0)) return {};
+  for (double& c : cumulative) c /= sum;
+  return cumulative;
+}
+
+// The load path's shape carries over between levels (the sliding steps take most of a run
+// at every level), where a whole-run extrapolation from the steps done would not: the
+// pressing steps are the fast ones.
+double estimate_current_seconds(const BenchRun& run, int steps_done, double elapsed, const FinishedRuns& finished) {
+  if (steps_done > 0) {
+    const auto below = finished.step_fractions.find(BenchRun{run.scene, run.solver, run.level - 1, run.processes}.key());
+    if (below != finished.step_fractions.end() && static_cast<size_t>(steps_done) <= below->second.size()) {
+      const double fraction = below->second[steps_done - 1];
+      if (fraction > 0) return elapsed / fraction;
+    }
+  }
+  return estimate_seconds(run, finished);
+}
+
+std::string time_left(const std::vector<BenchRun>& runs, size_t current, double elapsed, const FinishedRuns& finished,
+                      int steps_done) {
   double left = 0, overrun_estimate = 0;
   int remaining = 0, unknown = 0;
   for (size_t k = current; k < runs.size(); ++k) {
     if (finished.has(runs[k])) continue;
     ++remaining;
-    const double t = estimate_seconds(runs[k], finished);
+    const double t =
+        k == current ? estimate_current_seconds(runs[k], steps_done, elapsed, finished) : estimate_seconds(runs[k], finished);
     if (t <= 0) ++unknown;
     if (k == current && t > 0 && elapsed > t) overrun_estimate = t;
     left += k == current ? std::max(t - elapsed, 0.0) : t;

@@ -68,7 +68,8 @@ void CommandLine::declare_replay() {
   replay_cmd->add_option("--csv", replay.csv_path, "also write the table as CSV");
   replay_cmd->add_option("--krylov-rtol", replay.krylov_rtol,
                          "relative tolerance of each Krylov solve: 'recorded' (default: the recording solve's, unless "
-                         "-<backend>_ksp_rtol is given), 'backend' (the backend's own) or a number");
+                         "-<backend>_ksp_rtol is given), 'backend' (the backend's own) or a number; the GMRES restart "
+                         "is the recording solve's except under 'backend' or with -<backend>_ksp_gmres_restart");
 }
 
 void CommandLine::declare_bench() {

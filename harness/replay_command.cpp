@@ -12,15 +12,19 @@
 
 namespace stiction::harness {
 
-ReplayedSolve replay_system(const RecordedSystem& r, nonlinear::LinearSolver& solver, double krylov_rtol) {
+ReplayedSolve replay_system(const RecordedSystem& r, nonlinear::LinearSolver& solver, double krylov_rtol,
+                            int krylov_restart) {
   ReplayedSolve out;
   out.krylov_rtol = krylov_rtol;
   PetscVec x, diff;
   STICTION_PETSC(VecDuplicate(r.system.rhs, x.out()));
   STICTION_PETSC(VecZeroEntries(x));
+  solver.set_krylov_restart(krylov_restart);  // before set-up, as the Newton driver; 0 restores the backend's
   solver.setup(r.system);
   if (krylov_rtol > 0) solver.set_relative_tolerance(krylov_rtol);  // after set-up, as the Newton driver
   out.stats = solver.solve(r.system, x);
+  if (const auto m = out.stats.extra.find("ksp_gmres_restart"); m != out.stats.extra.end())
+    out.krylov_restart = static_cast<int>(m->second);
   STICTION_PETSC(VecDuplicate(x, diff.out()));
   STICTION_PETSC(VecWAXPY(diff, -1.0, r.solution, x));
   PetscReal dn, rn;
@@ -45,10 +49,15 @@ double replay_krylov_rtol(const std::string& choice, double recorded, bool rtol_
   return value;
 }
 
+int replay_krylov_restart(const std::string& choice, int recorded, bool restart_given) {
+  return choice == "backend" || restart_given ? 0 : recorded;
+}
+
 double run_replay(const ReplayOptions& o, const RunInfo& info) {
   const auto dirs = recorded_system_dirs(o.record_dir);
   replay_krylov_rtol(o.krylov_rtol, 0, false);  // a bad choice ends the run before any solve
   const bool rtol_given = solvers::backend_option_given(o.solver, "ksp_rtol");
+  const bool restart_given = solvers::backend_option_given(o.solver, "ksp_gmres_restart");
   auto solver = solvers::create_solver(o.solver, PETSC_COMM_WORLD);
   std::ofstream csv;
   if (!o.csv_path.empty()) {
@@ -56,28 +65,33 @@ double run_replay(const ReplayOptions& o, const RunInfo& info) {
     if (!csv) throw Error(fmt::format("cannot write '{}'", o.csv_path));
     csv << format_run_info(info, "# ") << "# solver: " << o.solver << "\n"
         << "system,unknowns,converged,reason,krylov_iterations,initial_residual,final_residual,setup_seconds,"
-           "solve_seconds,relative_difference_to_record,krylov_rtol\n";
+           "solve_seconds,relative_difference_to_record,krylov_restart,krylov_rtol\n";
   }
-  fmt::print("{:<44} {:>9} {:>6} {:>9} {:>9} {:>10} {:>10} {:>9}  {}\n", "system", "unknowns", "its", "setup s",
-             "solve s", "residual", "rel.diff", "rtol", "reason");
+  fmt::print("{:<44} {:>9} {:>6} {:>9} {:>9} {:>10} {:>10} {:>7} {:>9}  {}\n", "system", "unknowns", "its", "setup s",
+             "solve s", "residual", "rel.diff", "restart", "rtol", "reason");
   double worst = 0;
   for (const auto& dir : dirs) {
     RecordedSystem r = load_system(dir, PETSC_COMM_WORLD);
-    const ReplayedSolve replayed = replay_system(r, *solver, replay_krylov_rtol(o.krylov_rtol, r.krylov_rtol, rtol_given));
+    const ReplayedSolve replayed =
+        replay_system(r, *solver, replay_krylov_rtol(o.krylov_rtol, r.krylov_rtol, rtol_given),
+                      replay_krylov_restart(o.krylov_rtol, r.krylov_restart, restart_given));
     const auto& stats = replayed.stats;
     const double rel = replayed.relative_difference;
     worst = std::max(worst, rel);
     PetscInt n;
     STICTION_PETSC(MatGetSize(r.system.matrix, &n, nullptr));
-    // The tolerance the solve ran to ("backend": the backend's own -ksp_rtol).
+    // The tolerance the solve ran to ("backend": the backend's own -ksp_rtol) and its GMRES
+    // restart ("-": not a GMRES solve).
     const std::string rtol = replayed.krylov_rtol > 0 ? fmt::format("{:.0e}", replayed.krylov_rtol) : "backend";
-    fmt::print("{:<44} {:>9} {:>6} {:>9.3f} {:>9.3f} {:>10.3e} {:>10.3e} {:>9}  {}\n", r.description, n,
-               stats.iterations, stats.setup_seconds, stats.solve_seconds, stats.final_residual, rel, rtol,
+    const std::string restart = replayed.krylov_restart > 0 ? std::to_string(replayed.krylov_restart) : "-";
+    fmt::print("{:<44} {:>9} {:>6} {:>9.3f} {:>9.3f} {:>10.3e} {:>10.3e} {:>7} {:>9}  {}\n", r.description, n,
+               stats.iterations, stats.setup_seconds, stats.solve_seconds, stats.final_residual, rel, restart, rtol,
                stats.reason);
     if (csv.is_open()) {
-      csv << fmt::format("{},{},{},{},{},{:.6e},{:.6e},{:.4f},{:.4f},{:.6e},{}\n", r.description, n,
+      csv << fmt::format("{},{},{},{},{},{:.6e},{:.6e},{:.4f},{:.4f},{:.6e},{},{}\n", r.description, n,
                          stats.converged ? 1 : 0, stats.reason, stats.iterations, stats.initial_residual,
                          stats.final_residual, stats.setup_seconds, stats.solve_seconds, rel,
+                         replayed.krylov_restart > 0 ? std::to_string(replayed.krylov_restart) : "",
                          replayed.krylov_rtol > 0 ? fmt::format("{:g}", replayed.krylov_rtol) : "");
       csv.flush();
     }

@@ -16,21 +16,31 @@ struct ReplayOptions {
   // Relative tolerance of each Krylov solve: "recorded" (the recording solve's, so that the
   // counts compare; the backend's own -ksp_rtol for a record of a direct solve, or when the
   // command line gives -<backend>_ksp_rtol), "backend" (the backend's own), or a number.
+  // The GMRES restart follows the same choice: the recording solve's (the scene's
+  // newton.krylov_restart, else its backend's), except under "backend" or when the command
+  // line gives -<backend>_ksp_gmres_restart.
   std::string krylov_rtol = "recorded";
 };
 
 // One recorded system solved again: the solve's statistics, the relative tolerance it ran
-// to (0: the backend's own) and its relative difference to the recorded solution.
+// to (0: the backend's own), its GMRES restart (0: not a GMRES solve) and its relative
+// difference to the recorded solution.
 struct ReplayedSolve {
   nonlinear::LinearSolveStats stats;
   double krylov_rtol = 0;
+  int krylov_restart = 0;
   double relative_difference = 0;
 };
-ReplayedSolve replay_system(const RecordedSystem& record, nonlinear::LinearSolver& solver, double krylov_rtol);
+// krylov_restart 0: the backend's own -ksp_gmres_restart.
+ReplayedSolve replay_system(const RecordedSystem& record, nonlinear::LinearSolver& solver, double krylov_rtol,
+                            int krylov_restart = 0);
 // The tolerance a system recorded at `recorded` (RecordedSystem::krylov_rtol) is replayed to
 // under ReplayOptions::krylov_rtol (0: the backend's own); throws on a choice that is
 // neither a name nor a number in (0, 1).
 double replay_krylov_rtol(const std::string& choice, double recorded, bool rtol_given);
+// The GMRES restart a system recorded with `recorded` (RecordedSystem::krylov_restart) is
+// replayed with under that choice (0: the backend's own).
+int replay_krylov_restart(const std::string& choice, int recorded, bool restart_given);
 
 // Returns the largest relative difference to the recorded solutions.
 double run_replay(const ReplayOptions& options, const RunInfo& info);

@@ -40,7 +40,8 @@ void append_rows(const std::vector<nonlinear::StepResult>& steps, toml::array& s
                       {"final_residual", it.linear.final_residual},
                       {"setup_seconds", it.linear.setup_seconds},
                       {"solve_seconds", it.linear.solve_seconds},
-                      {"assembly_seconds", it.assembly_seconds}};
+                      {"assembly_seconds", it.assembly_seconds},
+                      {"contact_assembly_seconds", it.contact_assembly_seconds}};
       for (const auto& [name, value] : it.linear.extra) row.insert(name, value);
       solve_rows.push_back(std::move(row));
     }
@@ -93,7 +94,7 @@ void write_metrics(const std::string& path, const scene::SceneView& scene, const
   if (in_progress && !in_progress->iterations.empty()) append_rows({*in_progress}, step_rows, solve_rows, "IN_PROGRESS");
   // The run's totals, summed over the rows of every segment.
   long newton = 0, krylov = 0;
-  double assembly = 0, setup = 0, solve = 0;
+  double assembly = 0, contact_assembly = 0, setup = 0, solve = 0;
   int completed = 0, cuts = 0;
   for (const auto& node : step_rows) {
     const auto& s = *node.as_table();
@@ -105,6 +106,7 @@ void write_metrics(const std::string& path, const scene::SceneView& scene, const
     const auto& s = *node.as_table();
     krylov += s["krylov_iterations"].value<int64_t>().value_or(0);
     assembly += s["assembly_seconds"].value<double>().value_or(0);
+    contact_assembly += s["contact_assembly_seconds"].value<double>().value_or(0);
     setup += s["setup_seconds"].value<double>().value_or(0);
     solve += s["solve_seconds"].value<double>().value_or(0);
   }
@@ -137,6 +139,7 @@ void write_metrics(const std::string& path, const scene::SceneView& scene, const
                   {"wall_seconds", summary.wall_seconds + (earlier ? earlier->wall_seconds : 0.0)},
                   {"segments", earlier ? earlier->segments + 1 : 1},
                   {"assembly_seconds", assembly},
+                  {"contact_assembly_seconds", contact_assembly},
                   {"setup_seconds", setup},
                   {"solve_seconds", solve},
                   {"newton_rtol", scene.scene->newton.rtol},

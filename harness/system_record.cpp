@@ -96,10 +96,13 @@ void record_system(const std::string& dir, const nonlinear::NewtonSystem& sys, V
                       {"petsc", ctx.info.petsc_version},
                       {"git_revision", ctx.info.git_revision},
                       {"command", ctx.info.command_line}};
-  // The Krylov tolerance the recording solve ran to (the Newton driver's forcing term), so
-  // that a replay solves to the same one.
+  // The Krylov tolerance the recording solve ran to (the Newton driver's forcing term) and
+  // its GMRES restart (the scene's newton.krylov_restart, else the backend's), so that a
+  // replay solves the same way.
   if (const auto rtol = stats.extra.find("ksp_rtol"); rtol != stats.extra.end())
     meta["linear_solve"]["krylov_rtol"] = rtol->second;
+  if (const auto restart = stats.extra.find("ksp_gmres_restart"); restart != stats.extra.end())
+    meta["linear_solve"]["krylov_restart"] = static_cast<int>(restart->second);
   std::ofstream out(folder / "metadata.json");
   out << meta.dump(2) << "\n";
   if (!out) throw Error(fmt::format("cannot write '{}'", (folder / "metadata.json").string()));
@@ -134,7 +137,9 @@ RecordedSystem load_system(const std::string& system_dir, MPI_Comm comm) {
     r.description = fmt::format("{} level {} step {} iteration {}", meta.at("scene").get<std::string>(),
                                 meta.at("level").get<int>(), meta.at("step").get<int>(),
                                 meta.at("newton_iteration").get<int>());
-    r.krylov_rtol = meta.value("linear_solve", nlohmann::json::object()).value("krylov_rtol", 0.0);
+    const auto solve = meta.value("linear_solve", nlohmann::json::object());
+    r.krylov_rtol = solve.value("krylov_rtol", 0.0);
+    r.krylov_restart = solve.value("krylov_restart", 0);
     auto& sys = r.system;
     sys.comm = comm;
     sys.block_size = meta.at("block_size").get<int>();

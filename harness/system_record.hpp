@@ -34,6 +34,7 @@ struct RecordedSystem {
   nonlinear::NewtonSystem system;
   PetscVec solution;       // recorded solution
   double krylov_rtol = 0;  // relative tolerance of the recording Krylov solve (0: a direct solve, or not recorded)
+  int krylov_restart = 0;  // GMRES restart of the recording solve (0: not GMRES, or not recorded)
 };
 
 // The systems under `dir`, in (step, iteration) order; throws on a missing or unreadable record.

@@ -13,10 +13,9 @@
 # BENCH_PETSC_OPTIONS (PETSc options for the backends whose prefix they carry; each row
 # names those it ran with) and BENCH_RESUME=1 (continue an interrupted sweep, a killed run
 # from its checkpoint) adjust it; BENCH_OUT moves it. The level-2 rows, resumable over
-# several sittings (about 3 hours each on 2 cores), with the Krylov restart that keeps
-# schur-amg under 6 GB there:
-#   BENCH_LEVELS=2 BENCH_SOLVERS=schur-amg BENCH_RESUME=1 BENCH_TIME_LIMIT=36000 \
-#   BENCH_PETSC_OPTIONS="-schur_amg_ksp_gmres_restart 50" make bench
+# several sittings (about 2 hours per run; the scenes' GMRES(50), newton.krylov_restart,
+# keeps schur-amg under 6 GB there):
+#   BENCH_LEVELS=2 BENCH_SOLVERS=schur-amg BENCH_RESUME=1 BENCH_TIME_LIMIT=36000 make bench
 set -euo pipefail
 build=${1:-build}
 out=${BENCH_OUT:-reports/paper-tables}

@@ -187,8 +187,10 @@ fem::InternalForceStatus QuasiStaticSolver::evaluate(double t, fem::StateView u,
                                                      const std::vector<double>& lambda, Residuals& r) const {
   const fem::InternalForceStatus status = residual(t, u, r.elastic);
   r.u = r.elastic;
+  const auto t0 = std::chrono::steady_clock::now();
   if (layout_.identity()) {
     constraints_.evaluate(t, u, lambda, r.u.view(), r.c);
+    if (!constraints_.empty()) contact_seconds_ += seconds_since(t0);
     return status;
   }
   // Each process adds its share of the contact forces, on owned and ghost rows alike; the
@@ -203,6 +205,7 @@ fem::InternalForceStatus QuasiStaticSolver::evaluate(double t, fem::StateView u,
     const PetscInt a = layout_.local_of_owned(j);
     if (a < problem_.space->n_dofs()) ru[a] += share[a];
   }
+  if (!constraints_.empty()) contact_seconds_ += seconds_since(t0);
   return status;
 }
 
@@ -228,8 +231,9 @@ void QuasiStaticSolver::assemble_system(const Residuals& r, bool lift) {
   // The constraint forces the evaluation of their Jacobian writes, not read.
   std::optional<fem::GhostedVector> force_scratch;
   if (!constraints_.empty()) force_scratch.emplace(pattern_);
-  builder_.assemble(target_time_, u_.view(), lambda_, std::as_const(r.u).view(), r.c, constraints_, lifting_, lift,
-                    force_scratch ? force_scratch->view() : fem::ResidualView());
+  contact_seconds_ += builder_.assemble(target_time_, u_.view(), lambda_, std::as_const(r.u).view(), r.c,
+                                        constraints_, lifting_, lift,
+                                        force_scratch ? force_scratch->view() : fem::ResidualView());
 }
 
 void QuasiStaticSolver::report_state_changes(int step, int iteration, double t, const std::vector<char>& before) const {
@@ -359,6 +363,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
   lifting_.set_targets(t);
 
   Residuals r(pattern_), rt(pattern_);
+  contact_seconds_ = 0;
   auto t0 = std::chrono::steady_clock::now();
   const auto st0 = evaluate(t, u_.view(), lambda_, r);
   double asm_seconds = seconds_since(t0);
@@ -420,6 +425,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
     t0 = std::chrono::steady_clock::now();
     assemble_system(r, pending);
     rec.assembly_seconds = asm_seconds + seconds_since(t0);
+    rec.contact_assembly_seconds = std::exchange(contact_seconds_, 0.0);
     if (it == 0) res.reference_residual = std::max(rnorm, lifting_.free_norm(layout_, builder_.system().rhs));
 
     linear_.setup(builder_.system());

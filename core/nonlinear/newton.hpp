@@ -128,6 +128,9 @@ struct NewtonIteration {
   double residual = 0;          // free residual after the update
   double step_length = 1;       // after backtracking
   double assembly_seconds = 0;  // residual + tangent for this iteration
+  // The constraints' (contact's) part of assembly_seconds: their residual and Jacobian, the
+  // bordered matrix and the multiplier surface's blocks; the rest is the volume's.
+  double contact_assembly_seconds = 0;
   double constraint_residual = 0;  // ||r_c|| after the update (contact rows; 0 without)
   int state_changes = 0;        // contact states changed by this update
   LinearSolveStats linear;
@@ -346,6 +349,9 @@ private:
   // Each process's share of the contact forces before they are summed into their owners'
   // rows (several processes with contact; made at the first evaluation).
   mutable std::unique_ptr<fem::GhostedVector> contact_share_;
+  // Seconds the constraints took in the evaluations and assemblies since the last Newton
+  // iteration's record (NewtonIteration::contact_assembly_seconds).
+  mutable double contact_seconds_ = 0;
   LinearTally tally_;
   CutBack cut_back_;
   double time_ = 0;             // pseudo-time of the current converged state

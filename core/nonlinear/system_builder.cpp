@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 
 #include "fem/elasticity_assembly.hpp"
@@ -142,15 +143,21 @@ void NewtonSystemBuilder::add_field(const char* name, std::pair<int, int> range,
   system_.fields.push_back(std::move(f));
 }
 
-void NewtonSystemBuilder::assemble(double t, fem::StateView u, const std::vector<double>& lambda, fem::StateView r_u,
-                                   const std::vector<double>& r_c, const ConstraintSet& constraints,
-                                   const DirichletLifting& lifting, bool lift, fem::ResidualView force_scratch) {
+double NewtonSystemBuilder::assemble(double t, fem::StateView u, const std::vector<double>& lambda,
+                                     fem::StateView r_u, const std::vector<double>& r_c,
+                                     const ConstraintSet& constraints, const DirichletLifting& lifting, bool lift,
+                                     fem::ResidualView force_scratch) {
   if (!constraints.empty()) system_.matrix.reset();  // the caller released the backend's set-up on it
   stiffness_->begin_assembly();
   fem::assemble_internal(*problem_.space, problem_.cell_material, u, {}, stiffness_.get(),
                          &layout_.row_cells());
   stiffness_->end_assembly();
-  if (!constraints.empty()) border_with_constraints(t, u, lambda, force_scratch, constraints);
+  double constraint_seconds = 0;
+  if (!constraints.empty()) {
+    const auto t0 = std::chrono::steady_clock::now();
+    border_with_constraints(t, u, lambda, force_scratch, constraints);
+    constraint_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
   // The right side -r on the owned rows: displacement (and pressure) rows, then multipliers.
   const PetscInt n_u = problem_.space->n_dofs();
   PetscScalar* b;
@@ -161,6 +168,7 @@ void NewtonSystemBuilder::assemble(double t, fem::StateView u, const std::vector
   }
   STICTION_PETSC(VecRestoreArray(system_.rhs, &b));
   lifting.apply(layout_, system_.matrix, system_.rhs, u, lift);
+  return constraint_seconds;
 }
 
 // The augmented matrix (30): the tangent bordered by -B^T, C_u and C_lambda, and the

@@ -33,8 +33,9 @@ public:
   // The system at (u, lambda) at pseudo-time t for the residual (r_u, r_c) there (each
   // process reads the rows it owns); with lift, the constrained dofs' increment to the
   // lifting's targets enters it. force_scratch (shaped like r_u) takes the constraint forces
-  // that the evaluation of their Jacobian writes.
-  void assemble(double t, fem::StateView u, const std::vector<double>& lambda, fem::StateView r_u,
+  // that the evaluation of their Jacobian writes. Returns the seconds the constraints took:
+  // their Jacobian, the bordered matrix and the multiplier surface's blocks.
+  double assemble(double t, fem::StateView u, const std::vector<double>& lambda, fem::StateView r_u,
                 const std::vector<double>& r_c, const ConstraintSet& constraints, const DirichletLifting& lifting,
                 bool lift, fem::ResidualView force_scratch);
 

@@ -25,17 +25,18 @@ fs::path fresh_dir(const std::string& name) {
 }
 
 // Records the Newton systems of a scene's first load step at level 0, solved by `backend`
-// (to krylov_rtol when given); returns the record's folder and the Krylov iterations of
-// each recorded solve.
+// (to krylov_rtol and with GMRES(krylov_restart) when given); returns the record's folder and
+// the Krylov iterations of each recorded solve.
 struct Recording {
   fs::path dir;
   std::vector<int> krylov_iterations;
 };
 Recording record_first_step(const std::string& scene_name, const std::string& backend, const std::string& name,
-                            double krylov_rtol = 0) {
+                            double krylov_rtol = 0, int krylov_restart = 0) {
   Recording rec{fresh_dir(name), {}};
   auto scene = open_scene(scene_name, 0);
   if (krylov_rtol > 0) scene->newton.krylov_rtol = krylov_rtol;
+  scene->newton.krylov_restart = krylov_restart;
   auto solver = solvers::create_solver(backend, PETSC_COMM_WORLD);
   nonlinear::QuasiStaticSolver newton(PETSC_COMM_WORLD, scene->problem, scene->newton, *solver);
   const RecordContext ctx{scene_name, 0, backend, RunInfo{}};
@@ -55,7 +56,8 @@ fs::path record_cantilever(const std::string& name) { return record_first_step("
 ReplayedSolve replay(const std::string& system_dir, const std::string& backend, const std::string& choice = "backend") {
   RecordedSystem r = load_system(system_dir, PETSC_COMM_WORLD);
   auto solver = solvers::create_solver(backend, PETSC_COMM_WORLD);
-  ReplayedSolve out = replay_system(r, *solver, replay_krylov_rtol(choice, r.krylov_rtol, false));
+  ReplayedSolve out = replay_system(r, *solver, replay_krylov_rtol(choice, r.krylov_rtol, false),
+                                    replay_krylov_restart(choice, r.krylov_restart, false));
   EXPECT_TRUE(out.stats.converged) << out.stats.reason;
   return out;
 }
@@ -144,6 +146,33 @@ TEST(RecordReplay, DamagedRecordIsAClearError) {
   const fs::path empty = fresh_dir("record-empty");
   fs::create_directories(empty);
   EXPECT_THROW(recorded_system_dirs(empty.string()), Error);
+}
+
+// A record keeps the GMRES restart its solve ran with (here the scene's, 3, against the
+// backend's 100), and a replay under "recorded" runs with it, so that its counts are the
+// recording solve's; under "backend", or with -<backend>_ksp_gmres_restart given, the
+// backend's own. A direct solve records none.
+TEST(RecordReplay, ReplaysWithTheRecordedGmresRestart) {
+  const Recording rec = record_first_step("contact-patch-2d", "schur-amg", "record-restart", 0, 3);
+  const auto systems = recorded_system_dirs(rec.dir.string());
+  ASSERT_EQ(systems.size(), rec.krylov_iterations.size());
+  ASSERT_GE(systems.size(), 2u);
+  int recorded_total = 0, own_total = 0;
+  for (size_t k = 0; k < systems.size(); ++k) {
+    SCOPED_TRACE(systems[k]);
+    EXPECT_EQ(load_system(systems[k], PETSC_COMM_WORLD).krylov_restart, 3);
+    const ReplayedSolve recorded = replay(systems[k], "schur-amg", "recorded");
+    EXPECT_EQ(recorded.krylov_restart, 3);
+    EXPECT_EQ(recorded.stats.iterations, rec.krylov_iterations[k]);
+    const ReplayedSolve own = replay(systems[k], "schur-amg", "backend");
+    EXPECT_EQ(own.krylov_restart, 100);
+    recorded_total += recorded.stats.iterations, own_total += own.stats.iterations;
+  }
+  EXPECT_LT(own_total, recorded_total);  // the restart shaped the recorded counts
+  EXPECT_EQ(replay_krylov_restart("recorded", 3, true), 0);
+  EXPECT_EQ(replay_krylov_restart("1e-6", 3, false), 3);
+  const Recording direct = record_first_step("contact-patch-2d", "lu-mumps", "record-restart-direct");
+  EXPECT_EQ(load_system(recorded_system_dirs(direct.dir.string())[0], PETSC_COMM_WORLD).krylov_restart, 0);
 }
 
 }  // namespace

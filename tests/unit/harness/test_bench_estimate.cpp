@@ -2,6 +2,8 @@
 // worked by hand from the finished runs' wall times.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <vector>
 
 #include "bench_estimate.hpp"
@@ -48,6 +50,33 @@ TEST(BenchEstimate, UnderAMinuteInSeconds) {
   const std::vector<BenchRun> runs{{"a", "schur-amg", 0}, {"a", "schur-amg", 1}};
   EXPECT_EQ(time_left(runs, 1, 10.0, finished), "about 20 s left");
   EXPECT_EQ(time_left(runs, 1, 45.0, finished), "about 0 s left (this run past its estimate of 30 s)");
+}
+
+// Once a load step of the current run has finished, the run's total is its elapsed time over
+// the fraction the same backend's run one level down had spent by that step: a run whose
+// slow (sliding) steps come last is not taken for one about to end.
+TEST(BenchEstimate, TheCurrentRunFollowsTheLoadPathOfItsRunOneLevelDown) {
+  FinishedRuns finished;
+  finished.add({"a", "lu-mumps", 0}, 40.0, {0.05, 0.1, 0.5, 1.0});
+  const std::vector<BenchRun> runs{{"a", "lu-mumps", 0}, {"a", "lu-mumps", 1}};
+  // Before a step: 15 x 40 s = 600 s, of which 700 s elapsed would be past the estimate.
+  EXPECT_DOUBLE_EQ(estimate_current_seconds(runs[1], 0, 700.0, finished), 600.0);
+  // Two of four steps done in 700 s, where level 0 had spent 10%: 7 000 s in all.
+  EXPECT_DOUBLE_EQ(estimate_current_seconds(runs[1], 2, 700.0, finished), 7000.0);
+  EXPECT_EQ(time_left(runs, 1, 700.0, finished, 2), "about 105 min left");
+  // More steps than the run below had (another load path): the whole-run estimate again.
+  EXPECT_DOUBLE_EQ(estimate_current_seconds(runs[1], 5, 700.0, finished), 600.0);
+  // A run below without a profile (an older sweep's): the same.
+  finished.add({"a", "gamg", 0}, 40.0);
+  EXPECT_DOUBLE_EQ(estimate_current_seconds({"a", "gamg", 1}, 2, 700.0, finished), 600.0);
+}
+
+TEST(BenchEstimate, LoadStepFractionsComeFromTheRunsStepsCsv) {
+  const auto dir = std::filesystem::path(::testing::TempDir()) / "bench-estimate";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "steps.csv") << "# a run's header\nstep,time,wall_seconds\n1,1,1.0\n2,2,1.0\n3,3,2.0\n";
+  EXPECT_EQ(load_step_fractions((dir / "steps.csv").string()), (std::vector<double>{0.25, 0.5, 1.0}));
+  EXPECT_TRUE(load_step_fractions((dir / "missing.csv").string()).empty());
 }
 
 }  // namespace

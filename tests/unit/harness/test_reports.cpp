@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "bench_report.hpp"
 #include "csv_table.hpp"
 #include "paper_tables.hpp"
 #include "run_metrics.hpp"
@@ -223,6 +224,26 @@ TEST(PaperTables, MemoryBreakdownAtTheLargestSolve) {
   EXPECT_NE(md.find("| block-strips | 1 | lu-mumps | 2000 | 1500 | 320 | 1000 | 0 | 180 | — |"), std::string::npos)
       << md;
   EXPECT_EQ(md.find("| block-strips | 1 | ilu-gmres"), std::string::npos) << md;
+  fs::remove_all(dir);
+}
+
+// The report splits the assembly per Newton iteration into contact and volume for the
+// finished runs with contact: 10 Newton iterations, 5 s of assembly, 2 s of it contact
+// (0.2 / 0.3 s per iteration, 0.67); a run without contact or that did not finish has no row.
+TEST(BenchReport, SplitsTheAssemblyPerNewtonIterationIntoContactAndVolume) {
+  const fs::path dir = sweep_with_runs(
+      "stiction-assembly-split-test",
+      "scene,level,solver,status,newton_iterations,assembly_seconds,contact_assembly_seconds,detail\n"
+      "hertz-spheres-3d,1,schur-amg,ok,10,5.0,2.0,\n"
+      "block-compression,0,schur-amg,ok,4,1.0,0.0,\n"
+      "hertz-spheres-3d,1,gamg,newton-failed,1,0.5,0.1,\n");
+  write_bench_report(dir.string());
+  std::ifstream in(dir / "report.md");
+  const std::string md((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(md.find("## Assembly per Newton iteration: contact and volume"), std::string::npos) << md;
+  EXPECT_NE(md.find("| hertz-spheres-3d | 1 | schur-amg | 0.500 | 0.200 | 0.300 | 0.67 |"), std::string::npos) << md;
+  EXPECT_EQ(md.find("| block-compression | 0 | schur-amg | 0.250 |"), std::string::npos) << md;
+  EXPECT_EQ(md.find("| hertz-spheres-3d | 1 | gamg | 0.500 |"), std::string::npos) << md;
   fs::remove_all(dir);
 }
 

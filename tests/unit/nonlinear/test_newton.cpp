@@ -12,6 +12,7 @@
 #include "mesh/gmsh_io.hpp"
 #include "nonlinear/newton.hpp"
 #include "registry.hpp"
+#include "support/solve_scene.hpp"
 
 namespace stiction::nonlinear {
 namespace {
@@ -369,6 +370,28 @@ TEST(Newton, ConvergesQuadraticallyAndBalancesTheLoad) {
   const auto nodal = c.space.nodal_values(newton.displacement());
   for (int n = 0; n < c.space.n_nodes(); ++n) tip = std::min(tip, nodal[static_cast<size_t>(n) * 2 + 1]);
   EXPECT_LT(tip, -1.0);
+}
+
+// Every Newton iteration records the contact constraints' part of its assembly: above zero
+// and below the whole assembly on a contact scene, zero without contact.
+TEST(Newton, RecordsTheContactPartOfEachAssembly) {
+  const auto contact = test::solve_builtin("contact-patch-2d", 0, "lu-mumps");
+  ASSERT_TRUE(contact.converged());
+  int iterations = 0;
+  for (const auto& step : contact.steps)
+    for (const auto& it : step.iterations) {
+      ++iterations;
+      EXPECT_GT(it.contact_assembly_seconds, 0.0);
+      EXPECT_LT(it.contact_assembly_seconds, it.assembly_seconds);
+    }
+  EXPECT_GT(iterations, 0);
+  const auto bar = test::solve_builtin("cantilever-2d", 0, "lu-mumps");
+  ASSERT_TRUE(bar.converged());
+  ASSERT_FALSE(bar.steps.back().iterations.empty());
+  for (const auto& it : bar.steps.back().iterations) {
+    EXPECT_GT(it.assembly_seconds, 0.0);
+    EXPECT_EQ(it.contact_assembly_seconds, 0.0);
+  }
 }
 
 TEST(Newton, NamesTheReasonWhenItStops) {
