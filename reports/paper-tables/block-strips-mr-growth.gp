@@ -8,17 +8,17 @@ set xlabel 'unknowns of the Newton system'
 set output 'block-strips-mr-time-per-solve.svg'
 set ylabel 's / linear solve (set-up + Krylov)'
 set title 'block-strips-mr: time per linear solve'
-plot data index 0 using 1:2 with linespoints pt 7 lw 2 title 'fieldsplit-schur (p = 1.31)', \
-     data index 1 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.68)', \
-     data index 2 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.47)', \
-     data index 3 using 1:2 with linespoints pt 7 lw 2 title 'schur-amg (p = 1.27)', \
+plot data index 0 using 1:2 with linespoints pt 7 lw 2 title 'fieldsplit-schur (p = 1.40)', \
+     data index 1 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.72)', \
+     data index 2 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.51)', \
+     data index 3 using 1:2 with linespoints pt 7 lw 2 title 'schur-amg (p = 1.26)', \
      data index 4 using 1:2 with linespoints pt 7 lw 2 title 'schur-gamg (p = 1.25)'
 set output 'block-strips-mr-peak-memory.svg'
 set ylabel 'peak resident memory (MB)'
 set title 'block-strips-mr: peak memory'
-plot data index 0 using 1:3 with linespoints pt 7 lw 2 title 'fieldsplit-schur (p = 0.95)', \
+plot data index 0 using 1:3 with linespoints pt 7 lw 2 title 'fieldsplit-schur (p = 0.96)', \
      data index 1 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.27)', \
-     data index 2 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.17)', \
+     data index 2 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.18)', \
      data index 3 using 1:3 with linespoints pt 7 lw 2 title 'schur-amg (p = 0.83)', \
      data index 4 using 1:3 with linespoints pt 7 lw 2 title 'schur-gamg (p = 0.82)'
 unset logscale
