@@ -75,14 +75,15 @@ double estimate_current_seconds(const BenchRun& run, int steps_done, double elap
 }
 
 std::string time_left(const std::vector<BenchRun>& runs, size_t current, double elapsed, const FinishedRuns& finished,
-                      int steps_done) {
+                      int steps_done, double time_limit) {
   double left = 0, overrun_estimate = 0;
   int remaining = 0, unknown = 0;
   for (size_t k = current; k < runs.size(); ++k) {
     if (finished.has(runs[k])) continue;
     ++remaining;
-    const double t =
+    double t =
         k == current ? estimate_current_seconds(runs[k], steps_done, elapsed, finished) : estimate_seconds(runs[k], finished);
+    if (time_limit > 0) t = std::min(t, time_limit);  // the sweep stops a run there
     if (t <= 0) ++unknown;
     if (k == current && t > 0 && elapsed > t) overrun_estimate = t;
     left += k == current ? std::max(t - elapsed, 0.0) : t;

@@ -46,8 +46,9 @@ double estimate_current_seconds(const BenchRun& run, int steps_done, double elap
 
 // "about N min left" ("about N s left" under a minute) for runs[current..] (the current one
 // `elapsed` seconds in, `steps_done` load steps finished), with the runs that cannot be
-// estimated yet counted apart, and a current run past its estimate named.
+// estimated yet counted apart, and a current run past its estimate named. No run is
+// estimated beyond time_limit seconds (the sweep's limit per run; 0: none).
 std::string time_left(const std::vector<BenchRun>& runs, size_t current, double elapsed, const FinishedRuns& finished,
-                      int steps_done = 0);
+                      int steps_done = 0, double time_limit = 0);
 
 }  // namespace stiction::harness

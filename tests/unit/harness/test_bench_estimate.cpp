@@ -64,6 +64,8 @@ TEST(BenchEstimate, TheCurrentRunFollowsTheLoadPathOfItsRunOneLevelDown) {
   // Two of four steps done in 700 s, where level 0 had spent 10%: 7 000 s in all.
   EXPECT_DOUBLE_EQ(estimate_current_seconds(runs[1], 2, 700.0, finished), 7000.0);
   EXPECT_EQ(time_left(runs, 1, 700.0, finished, 2), "about 105 min left");
+  // A sweep that stops each run after an hour: 3 600 - 700 s left.
+  EXPECT_EQ(time_left(runs, 1, 700.0, finished, 2, 3600.0), "about 48 min left");
   // More steps than the run below had (another load path): the whole-run estimate again.
   EXPECT_DOUBLE_EQ(estimate_current_seconds(runs[1], 5, 700.0, finished), 600.0);
   // A run below without a profile (an older sweep's): the same.
