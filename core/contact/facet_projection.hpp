@@ -93,6 +93,10 @@ struct FacetPoint {
   typename G::Tangents dx;
   std::array<typename G::Vec, G::P * G::P> ddx;
   double N[6] = {0, 0, 0, 0, 0, 0}, dN[12] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  FacetPoint() {
+    x.setZero(), dx.setZero();
+    for (auto& v : ddx) v.setZero();
+  }
   const double* dN_of(int a) const { return dN + a * G::P; }
 };
 
@@ -113,6 +117,11 @@ public:
       for (int a = 0; a < n_; ++a)
         for (int k = 0; k < P; ++k) ddN_[a][k * P + l] = dl[a * P + k] - d0[a * P + k];
     }
+    if constexpr (D == 3)
+      for (int e = 0; e < 3; ++e) {
+        const Eigen::Vector2d mid = 0.5 * (corner(e) + corner((e + 1) % 3));
+        fem::eval_shape(P, kind_, mid.data(), midpoint_N_[e], d0);
+      }
   }
   int n() const { return n_; }
 
@@ -123,7 +132,6 @@ public:
     p.x = E * eta;
     for (int c = 0; c < D; ++c) p.x[c] += f.X0[c];
     p.dx = E;
-    for (auto& v2 : p.ddx) v2.setZero();
     for (int a = 0; a < n_; ++a) {
       typename G::Vec va = node_value(f, a, v);
       if (f.curved && a >= f.n_vertices) va += offset_of(f, a);
@@ -159,7 +167,30 @@ public:
     return out;
   }
 
+  // 3D: the Bezier control net of facet f in the configuration X + v: its vertices, then per
+  // edge (i, j) the point 2 x(midpoint) - (x_i + x_j) / 2. A quadratic (or flat) triangle
+  // lies in the convex hull of its net: the Bernstein weights are non-negative and sum to one.
+  std::array<Eigen::Vector3d, 6> control_net(const SurfaceFacet& f, fem::StateView v) const {
+    static_assert(D == 3, "a control net of a triangle");
+    std::array<Eigen::Vector3d, 6> net;
+    const Eigen::Vector3d X0(f.X0);
+    const typename G::Tangents E = reference_edges<D>(f);
+    for (int k = 0; k < 3; ++k) net[k] = X0 + E * corner(k) + node_value(f, k, v);
+    for (int e = 0; e < 3; ++e) {
+      Eigen::Vector3d mid = X0 + E * (0.5 * (corner(e) + corner((e + 1) % 3)));
+      for (int a = 0; a < n_; ++a) {
+        if (midpoint_N_[e][a] == 0) continue;
+        typename G::Vec va = node_value(f, a, v);
+        if (f.curved && a >= f.n_vertices) va += offset_of(f, a);
+        mid += midpoint_N_[e][a] * va;
+      }
+      net[3 + e] = 2 * mid - 0.5 * (net[e] + net[(e + 1) % 3]);
+    }
+    return net;
+  }
+
 private:
+  static Eigen::Vector2d corner(int k) { return k == 0 ? Eigen::Vector2d(0, 0) : Eigen::Vector2d::Unit(k - 1); }
   static typename G::Vec offset_of(const SurfaceFacet& f, int a) {
     return Eigen::Map<const typename G::Vec>(f.offset[a - f.n_vertices]);
   }
@@ -172,6 +203,7 @@ private:
   fem::BasisKind kind_;
   int n_;
   double ddN_[6][G::P * G::P] = {};
+  double midpoint_N_[3][6] = {};  // 3D: the shape functions at the edge midpoints
 };
 
 // A master point y(eta) of x on a facet. For a closest point (project below) `sensitivity`
@@ -201,6 +233,28 @@ struct Projection {
   Eigen::Matrix<double, D, D> ray_inverse = Eigen::Matrix<double, D, D>::Zero();
   FacetPoint<D> y;
 };
+
+// Whether the line x + t nu can meet a triangle with control net `net` (control_net): seen
+// along nu, the line misses the triangle when x lies beyond one edge line of the vertex
+// triangle by more than every control point does. It never rules out a crossing on the
+// triangle (edges included): x must lie beyond by 1e-9 of the net's scale, far above
+// roundoff.
+inline bool line_may_cross(const std::array<Eigen::Vector3d, 6>& net, const Eigen::Vector3d& x,
+                           const Eigen::Vector3d& nu) {
+  for (int e = 0; e < 3; ++e) {
+    const Eigen::Vector3d& a = net[e];
+    const Eigen::Vector3d edge = net[(e + 1) % 3] - a, across = net[(e + 2) % 3] - a;
+    const Eigen::Vector3d w = nu.cross(edge);  // w . (p - a): p's side of the edge line along nu
+    const double tolerance = 1e-9 * nu.norm() * edge.norm() * across.norm();
+    const double inner = w.dot(across);
+    if (std::abs(inner) <= tolerance) continue;  // the line runs along the triangle
+    const double sign = inner > 0 ? 1.0 : -1.0;
+    double lowest = 0;  // the vertices: 0 on the edge, |inner| opposite
+    for (int c = 3; c < 6; ++c) lowest = std::min(lowest, sign * w.dot(net[c] - a));
+    if (sign * w.dot(x - a) < lowest - tolerance) return false;
+  }
+  return true;
+}
 
 namespace detail {
 
@@ -351,10 +405,12 @@ Projection<D> intersect(const FacetEvaluator<D>& ev, const SurfaceFacet& m, cons
   constexpr int P = G::P;
   using Unknowns = Eigen::Matrix<double, D, 1>;  // (eta, t)
   Projection<D> p;
+  if constexpr (D == 3)  // most candidates are the crossed facet's neighbours: spare their Newton
+    if (!line_may_cross(ev.control_net(m, u), x, nu)) return p;
   Unknowns z = Unknowns::Zero();
   z.template head<P>().setConstant(1.0 / (P + 1));
   Eigen::Matrix<double, D, D> A;
-  for (int it = 0, polish = 0; it < 30; ++it) {
+  for (int it = 0; it < 30; ++it) {
     p.y = ev.at(m, z.template head<P>(), u);
     A << -p.y.dx, nu;
     const Unknowns R = x + z[P] * nu - p.y.x;
@@ -369,7 +425,8 @@ Projection<D> intersect(const FacetEvaluator<D>& ev, const SurfaceFacet& m, cons
     const Unknowns step = A_inverse * R;
     z -= step;
     if (!detail::inside<P>(typename G::Param(z.template head<P>()), 0.5)) return p;
-    if (step.template head<P>().norm() < 1e-10 && ++polish > 2) {
+    // Newton converges quadratically: after a step below 1e-10 the next would be at round-off.
+    if (step.template head<P>().norm() < 1e-10) {
       if (!detail::inside<P>(typename G::Param(z.template head<P>()), 0)) return p;
       return detail::crossing_at<D>(ev, m, x, nu, u, z.template head<P>(), z[P]);
     }

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <boost/geometry.hpp>
 #include <boost/geometry/index/rtree.hpp>
 #include <cmath>
@@ -49,19 +50,21 @@ BoxPoint<D> box_point(const Eigen::Matrix<double, D, 1>& x) {
   else return BoxPoint<D>(x[0], x[1], x[2]);
 }
 
-// Bounding box of a facet's vertices and edge midpoints (the nodes of a P2 facet), widened
-// by margin.
+// Bounding box of a facet's Bezier control points, which hold the whole (curved) facet,
+// widened by margin. 2D: the ends and 2 x(1/2) - (x(0) + x(1)) / 2; 3D: control_net.
 template <int D>
 Box<D> facet_box(const FacetEvaluator<D>& ev, const Facet& f, fem::StateView u, double margin) {
-  using Param = typename Geometry<D>::Param;
-  std::vector<Param> samples;
-  if constexpr (D == 2) samples = {Param(0.0), Param(0.5), Param(1.0)};
-  else samples = {Param(0, 0), Param(1, 0), Param(0, 1), Param(0.5, 0), Param(0.5, 0.5), Param(0, 0.5)};
-  Eigen::Matrix<double, D, 1> lo = Eigen::Matrix<double, D, 1>::Constant(1e300), hi = -lo;
-  for (const Param& eta : samples) {
-    const auto x = ev.at(f, eta, u).x;
-    lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+  using Vec = typename Geometry<D>::Vec;
+  std::vector<Vec> points;
+  if constexpr (D == 2) {
+    using Param = typename Geometry<D>::Param;
+    const Vec a = ev.at(f, Param(0.0), u).x, b = ev.at(f, Param(1.0), u).x;
+    points = {a, b, Vec(2 * ev.at(f, Param(0.5), u).x - 0.5 * (a + b))};
+  } else {
+    for (const Eigen::Vector3d& p : ev.control_net(f, u)) points.push_back(p);
   }
+  Vec lo = Vec::Constant(1e300), hi = -lo;
+  for (const Vec& x : points) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
   return Box<D>(box_point<D>((lo.array() - margin).matrix()), box_point<D>((hi.array() + margin).matrix()));
 }
 
@@ -205,15 +208,15 @@ void projection_derivative(const FacetEvaluator<D>& ev, const Facet& slave, cons
 template <int D>
 using MasterTree = bgi::rtree<std::pair<Box<D>, int>, bgi::quadratic<16>>;
 
-// 3D: how many master facets, nearest box first, a slave point looks at (the search stops
-// earlier at the first box farther than the nearest crossing found). Asking the R-tree for
-// every facet in order kept a heap of the whole tree per point: 17% of a hertz-spheres-3d
-// level-1 solve with lu-mumps.
+// 3D closest points: how many master facets, nearest box first, a slave point looks at (the
+// search stops earlier at the first box farther than the nearest point found). Asking the
+// R-tree for every facet in order kept a heap of the whole tree per point: 17% of a
+// hertz-spheres-3d level-1 solve with lu-mumps.
 constexpr unsigned kNearestMasterFacets = 16;
 
 // Where to look for a slave facet's master points: 2D, the master facets whose boxes meet the
 // slave facet's box widened by the search radius (listed: the segment cuts need them all);
-// 3D, the R-tree itself, searched per point nearest box first.
+// 3D, the R-tree itself, searched per point.
 template <int D>
 struct MasterCandidates {
   const MasterTree<D>* tree = nullptr;
@@ -225,7 +228,8 @@ struct MasterCandidates {
 // The valid master points of slave point s (farther than the search radius, off the facet
 // or on the master's back: not valid). 2D: closest-point projections on every listed
 // candidate (the blend looks for a partner of the closest). 3D: crossings of the slave
-// normal (or closest points, master_point) on the kNearestMasterFacets nearest boxes,
+// normal on the facets whose boxes meet the normal's segment within the search radius; or,
+// with master_point = "closest", closest points on the kNearestMasterFacets nearest boxes,
 // stopping at the first box farther than the nearest point found, which no facet inside it
 // can beat.
 template <int D>
@@ -246,6 +250,18 @@ std::vector<Branch<D>> valid_projections(const FacetEvaluator<D>& ev, const Face
   };
   if constexpr (D == 2) {
     for (const Facet* m : candidates.listed) consider(m);
+  } else if (!candidates.closest_point) {
+    // A valid crossing lies on the normal's segment of half-length search_radius around s, so
+    // only facets whose boxes meet that segment can hold one. A point near a surface lies in
+    // the boxes of several facets, and walking the nearest boxes in order cost more than the
+    // projections (block-strips, hertz-spheres-3d).
+    const typename Geometry<D>::Vec reach = search_radius * slave_normal.normalized();
+    const bg::model::segment<BoxPoint<D>> line(box_point<D>(typename Geometry<D>::Vec(s.x - reach)),
+                                               box_point<D>(typename Geometry<D>::Vec(s.x + reach)));
+    std::vector<std::pair<Box<D>, int>> hits;
+    candidates.tree->query(bgi::intersects(line), std::back_inserter(hits));
+    for (const auto& [box, m] : hits)
+      if (!share_vertex(f, (*candidates.master)[m])) consider(&(*candidates.master)[m]);  // self-contact
   } else {
     const BoxPoint<D> x = box_point<D>(s.x);
     double closest = search_radius;
@@ -374,39 +390,78 @@ PointKinematics<D> point_kinematics(const FacetEvaluator<D>& ev, const Facet& f,
   return p;
 }
 
-// Node i's share wphi = w phi_i of the point: G_i, S_i and, when asked, their derivatives.
+// The columns d G_i / du and d S_i / du of one slave facet's vertex nodes i (k = 0 .. D - 1),
+// summed over the facet's points before they reach the nodes' maps. The points of a facet
+// share their columns (the facet's unknowns and those of the few master facets they cross),
+// so one map insertion per column and node replaces one per point and node. Columns find
+// their slot through a table indexed by unknown, reset at each flush.
+class FacetColumns {
+public:
+  explicit FacetColumns(int n_dofs) : slot_(static_cast<size_t>(n_dofs), -1) {}
+
+  void add(int k, PetscInt dof, const Vec3& dG, const Vec3& dS) {
+    int& slot = slot_[static_cast<size_t>(dof)];
+    if (slot < 0) {
+      slot = static_cast<int>(dofs_.size());
+      dofs_.push_back(dof);
+      sums_.emplace_back();
+      for (auto& v : sums_.back()) v.setZero();
+    }
+    sums_[slot][2 * k] += dG, sums_[slot][2 * k + 1] += dS;
+  }
+
+  // Adds node k's sums into node_k(k)'s maps (null: not derived) and empties the table.
+  template <class NodeOf>
+  void flush(int n_nodes, const NodeOf& node_k) {
+    for (int k = 0; k < n_nodes; ++k) {
+      NodeKinematics* node = node_k(k);
+      if (!node) continue;
+      for (size_t j = 0; j < dofs_.size(); ++j) {
+        const Vec3 &dG = sums_[j][2 * k], &dS = sums_[j][2 * k + 1];
+        if (dG.isZero(0) && dS.isZero(0)) continue;  // the column of another vertex only
+        accumulate(node->dG, dofs_[j], dG);
+        accumulate(node->dS, dofs_[j], dS);
+      }
+    }
+    for (const PetscInt dof : dofs_) slot_[static_cast<size_t>(dof)] = -1;
+    dofs_.clear(), sums_.clear();
+  }
+
+private:
+  std::vector<int> slot_;
+  std::vector<PetscInt> dofs_;
+  std::vector<std::array<Vec3, 6>> sums_;  // per column: (dG, dS) of vertex 0, 1, 2
+};
+
+// Node i's share wphi = w phi_i of the point: G_i, S_i and, when asked, their derivatives
+// (the columns of vertex k of the facet, into `columns`).
 template <int D>
 void add_node_kinematics(const FacetEvaluator<D>& ev, const Facet& f, const PointKinematics<D>& p, double wphi,
-                         bool with_derivatives, NodeKinematics& node) {
+                         bool with_derivatives, NodeKinematics& node, int k, FacetColumns& columns) {
   using Vec = typename Geometry<D>::Vec;
   node.G += lift<D>(wphi * p.r);
   node.S += lift<D>(wphi * (p.slave_motion - p.master_motion));
   if (!with_derivatives) return;
   for (int a = 0; a < ev.n(); ++a)
     for (int c = 0; c < D; ++c) {
-      const PetscInt slave_dof = static_cast<PetscInt>(f.nodes[a]) * D + c;
-      accumulate(node.dG, slave_dof, Vec3(wphi * p.s.N[a] * Vec3::Unit(c)));
-      accumulate(node.dS, slave_dof, Vec3(wphi * p.s.N[a] * Vec3::Unit(c)));
+      const Vec3 column = wphi * p.s.N[a] * Vec3::Unit(c);
+      columns.add(k, static_cast<PetscInt>(f.nodes[a]) * D + c, column, column);
     }
   for (size_t bi = 0; bi < p.branches.size(); ++bi) {
     const Branch<D>& b = p.branches[bi];
     const double wb = wphi * b.weight;
     for (int a = 0; a < ev.n(); ++a)
       for (int c = 0; c < D; ++c) {
-        const PetscInt master_dof = static_cast<PetscInt>(b.facet->nodes[a]) * D + c;
-        accumulate(node.dG, master_dof, Vec3(-wb * b.p.y.N[a] * Vec3::Unit(c)));
-        accumulate(node.dS, master_dof, Vec3(-wb * b.p.y.N[a] * Vec3::Unit(c)));
+        const Vec3 column = -wb * b.p.y.N[a] * Vec3::Unit(c);
+        columns.add(k, static_cast<PetscInt>(b.facet->nodes[a]) * D + c, column, column);
       }
-    for (const auto& [dof, de] : b.deta) {
-      accumulate(node.dG, dof, lift<D>(Vec(-wb * (b.p.y.dx * de))));
-      accumulate(node.dS, dof, lift<D>(Vec(-wb * (p.branch_rate[bi] * de))));
-    }
+    for (const auto& [dof, de] : b.deta)
+      columns.add(k, dof, lift<D>(Vec(-wb * (b.p.y.dx * de))), lift<D>(Vec(-wb * (p.branch_rate[bi] * de))));
   }
   if (p.branches.size() == 2)
-    for (const auto& [dof, dw] : p.dw0) {
-      accumulate(node.dG, dof, lift<D>(Vec(-wphi * dw * (p.branches[0].p.y.x - p.branches[1].p.y.x))));
-      accumulate(node.dS, dof, lift<D>(Vec(-wphi * dw * (p.branch_motion[0] - p.branch_motion[1]))));
-    }
+    for (const auto& [dof, dw] : p.dw0)
+      columns.add(k, dof, lift<D>(Vec(-wphi * dw * (p.branches[0].p.y.x - p.branches[1].p.y.x))),
+                  lift<D>(Vec(-wphi * dw * (p.branch_motion[0] - p.branch_motion[1]))));
 }
 
 // The constraint forces of node i's multiplier lam at the point: the slave carries +lambda,
@@ -646,6 +701,7 @@ void SurfaceContact::kinematics(double t, fem::StateView u, const double* lambda
 
   std::vector<std::pair<Box<D>, int>> hits;
   MergedEntries facet_entries;
+  FacetColumns facet_columns(with_derivatives ? static_cast<int>(u.size()) : 0);
   for (size_t k = 0; k < slave_facets_.size(); ++k) {
     const Facet& f = slave_facets_[k];
     if (record) found_.facet_points[k] = static_cast<int>(found_.points.size());
@@ -687,7 +743,7 @@ void SurfaceContact::kinematics(double t, fem::StateView u, const double* lambda
       for (int k = 0; k < D; ++k) {
         const int i = f.node_of_vertex[k];
         const double wphi = weight * jacobian_f * facets::vertex_hat<D>(k, eta);
-        if (owns(i)) add_node_kinematics<D>(ev, f, p, wphi, derive_f && derive[i], nodes[i]);
+        if (owns(i)) add_node_kinematics<D>(ev, f, p, wphi, derive_f && derive[i], nodes[i], k, facet_columns);
         covered[i] += wphi;
         if (!forces_here) continue;
         Vec3 lam = Vec3::Zero();
@@ -699,6 +755,11 @@ void SurfaceContact::kinematics(double t, fem::StateView u, const double* lambda
       }
       if (forces_here && jacobian && derive_f) add_force_variation<D>(ev, p, lam_w, facet_entries);
     }
+    if (derive_f)
+      facet_columns.flush(D, [&](int k) {
+        const int i = f.node_of_vertex[k];
+        return owns(i) && derive[i] ? &nodes[i] : nullptr;
+      });
     if (jacobian) facet_entries.flush_into(*jacobian);
   }
   if (record) {
