@@ -25,11 +25,14 @@
 //     contact forces differ by 1.7e-5 (tests/verification/test_master_point.cpp); on
 //     hertz-spheres-3d with the key set, level 0, lu-mumps stops at step 1 after 25
 //     iterations (26 state changes in the last) and schur-amg breaks down after 9.
-//   * candidates: a Boost.Geometry R-tree over the master facets' bounding boxes, rebuilt at
-//     every evaluation without derivatives; the Jacobian at that iterate rebuilds the
-//     master points the evaluation found instead of searching again (found_ below). A point
-//     whose master point is farther than the search radius, off the facet, or on the
-//     master's back does not contribute.
+//   * candidates: a Boost.Geometry R-tree over the boxes of the master facets' control nets
+//     (which hold a curved facet), rebuilt at every evaluation without derivatives; in 3D
+//     the facets whose boxes meet the slave normal's segment within the search radius (the
+//     closest-point rule: the nearest boxes in order), each first tested against the line
+//     (facets::line_may_cross) before the crossing's Newton. The Jacobian at that iterate
+//     rebuilds the master points the evaluation found instead of searching again (found_
+//     below). A point whose master point is farther than the search radius, off the facet,
+//     or on the master's back does not contribute.
 //   * integration (choice). 2D, segments (mortar-style): each slave facet is cut where the
 //     projections of the master facet's end points land, and each piece is integrated with
 //     its own Gauss rule, so the integrands are smooth on every piece and B_ext is exact
