@@ -238,7 +238,7 @@ struct Projection {
 // along nu, the line misses the triangle when x lies beyond one edge line of the vertex
 // triangle by more than every control point does. It never rules out a crossing on the
 // triangle (edges included): x must lie beyond by 1e-9 of the net's scale, far above
-// roundoff.
+// round-off.
 inline bool line_may_cross(const std::array<Eigen::Vector3d, 6>& net, const Eigen::Vector3d& x,
                            const Eigen::Vector3d& nu) {
   for (int e = 0; e < 3; ++e) {
@@ -397,7 +397,8 @@ inline Projection<3> project(const FacetEvaluator<3>& ev, const SurfaceFacet& m,
 // Where the line x + t nu meets facet m (Newton on R(eta, t) = x + t nu - y(eta) = 0 from the
 // centroid, t = 0). Found only when the crossing lies on the facet (eta inside it, edges
 // included): unlike the closest point, the crossing moves continuously from one facet to the
-// next as x moves, because the surface is continuous across its edges.
+// next as x moves, because the surface is continuous across its edges. In 3D a line that
+// misses the facet's control net is ruled out before Newton (line_may_cross).
 template <int D>
 Projection<D> intersect(const FacetEvaluator<D>& ev, const SurfaceFacet& m, const typename Geometry<D>::Vec& x,
                         const typename Geometry<D>::Vec& nu, fem::StateView u) {
