@@ -373,7 +373,8 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
       const int step = count_data_lines(run_dir + "/steps.csv");
       if (step != last_step || t - last_print > 30) {
         fmt::print(stderr, "bench [{}/{}] {} {} L{}{}: {} load steps done, {:.0f} s; {}\n", index, runs.size(),
-                   run.scene, run.solver, run.level, on, step, t, time_left(runs, position, t, finished_runs, step, o.time_limit_seconds));
+                   run.scene, run.solver, run.level, on, step, t,
+                   time_left(runs, position, t, finished_runs, step, o.time_limit_seconds));
         last_step = step;
         last_print = t;
       }

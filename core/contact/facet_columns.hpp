@@ -11,6 +11,12 @@
 
 namespace stiction::contact {
 
+// columns[dof] += v, starting from zero (Eigen's fixed-size vectors are not zero-initialised).
+template <class V>
+void add_column(std::map<PetscInt, V>& columns, PetscInt dof, const V& v) {
+  columns.try_emplace(dof, V::Zero()).first->second += v;
+}
+
 // The columns d G_i / du and d S_i / du of one slave facet's vertex nodes i (k = 0 .. D - 1),
 // summed over the facet's points before they reach the nodes' maps. The points of a facet
 // share their columns (the facet's unknowns and those of the few master facets they cross),
@@ -40,8 +46,8 @@ public:
       for (size_t j = 0; j < dofs_.size(); ++j) {
         const Vec3 &dG = sums_[j][2 * k], &dS = sums_[j][2 * k + 1];
         if (dG.isZero(0) && dS.isZero(0)) continue;  // the column of another vertex only
-        add_to(node->dG, dofs_[j], dG);
-        add_to(node->dS, dofs_[j], dS);
+        add_column(node->dG, dofs_[j], dG);
+        add_column(node->dS, dofs_[j], dS);
       }
     }
     for (const PetscInt dof : dofs_) slot_[static_cast<size_t>(dof)] = -1;
@@ -49,10 +55,6 @@ public:
   }
 
 private:
-  static void add_to(std::map<PetscInt, Vec3>& columns, PetscInt dof, const Vec3& v) {
-    columns.try_emplace(dof, Vec3::Zero()).first->second += v;
-  }
-
   std::vector<int> slot_;
   std::vector<PetscInt> dofs_;
   std::vector<std::array<Vec3, 6>> sums_;  // per column: (dG, dS) of vertex 0, 1, 2

@@ -133,8 +133,7 @@ public:
     for (int c = 0; c < D; ++c) p.x[c] += f.X0[c];
     p.dx = E;
     for (int a = 0; a < n_; ++a) {
-      typename G::Vec va = node_value(f, a, v);
-      if (f.curved && a >= f.n_vertices) va += offset_of(f, a);
+      const typename G::Vec va = node_displacement(f, a, v);
       p.x += p.N[a] * va;
       for (int k = 0; k < P; ++k) p.dx.col(k) += p.dN[a * P + k] * va;
       for (int kl = 0; kl < P * P; ++kl) p.ddx[kl] += ddN_[a][kl] * va;
@@ -178,12 +177,8 @@ public:
     for (int k = 0; k < 3; ++k) net[k] = X0 + E * corner(k) + node_value(f, k, v);
     for (int e = 0; e < 3; ++e) {
       Eigen::Vector3d mid = X0 + E * (0.5 * (corner(e) + corner((e + 1) % 3)));
-      for (int a = 0; a < n_; ++a) {
-        if (midpoint_N_[e][a] == 0) continue;
-        typename G::Vec va = node_value(f, a, v);
-        if (f.curved && a >= f.n_vertices) va += offset_of(f, a);
-        mid += midpoint_N_[e][a] * va;
-      }
+      for (int a = 0; a < n_; ++a)
+        if (midpoint_N_[e][a] != 0) mid += midpoint_N_[e][a] * node_displacement(f, a, v);
       net[3 + e] = 2 * mid - 0.5 * (net[e] + net[(e + 1) % 3]);
     }
     return net;
@@ -199,6 +194,13 @@ private:
     typename G::Vec x;
     for (int c = 0; c < D; ++c) x[c] = v[k + c];
     return x;
+  }
+  // Node a's coefficient over the chord map X0 + E eta: its value in v, plus a curved
+  // facet's reference offset at an edge node.
+  static typename G::Vec node_displacement(const SurfaceFacet& f, int a, fem::StateView v) {
+    typename G::Vec va = node_value(f, a, v);
+    if (f.curved && a >= f.n_vertices) va += offset_of(f, a);
+    return va;
   }
   fem::BasisKind kind_;
   int n_;

@@ -39,12 +39,6 @@ Vec3 lift(const Eigen::Matrix<double, D, 1>& v) {
   return out;
 }
 
-// column[key] += v, starting from zero (Eigen's fixed-size vectors are not zero-initialised).
-template <class V>
-void accumulate(std::map<PetscInt, V>& columns, PetscInt key, const V& v) {
-  columns.try_emplace(key, V::Zero()).first->second += v;
-}
-
 template <int D>
 BoxPoint<D> box_point(const Eigen::Matrix<double, D, 1>& x) {
   if constexpr (D == 2) return BoxPoint<D>(x[0], x[1]);
@@ -223,6 +217,7 @@ struct MasterCandidates {
   const MasterTree<D>* tree = nullptr;
   const std::vector<Facet>* master = nullptr;
   std::vector<const Facet*> listed;
+  std::vector<std::pair<Box<D>, int>>* hits = nullptr;  // 3D: scratch for the per-point query
   bool closest_point = true;  // 3D: the closest point instead of the slave normal's crossing
 };
 
@@ -259,7 +254,8 @@ std::vector<Branch<D>> valid_projections(const FacetEvaluator<D>& ev, const Face
     const typename Geometry<D>::Vec reach = search_radius * slave_normal.normalized();
     const bg::model::segment<BoxPoint<D>> line(box_point<D>(typename Geometry<D>::Vec(s.x - reach)),
                                                box_point<D>(typename Geometry<D>::Vec(s.x + reach)));
-    std::vector<std::pair<Box<D>, int>> hits;
+    std::vector<std::pair<Box<D>, int>>& hits = *candidates.hits;
+    hits.clear();
     candidates.tree->query(bgi::intersects(line), std::back_inserter(hits));
     for (const auto& [box, m] : hits)
       if (!share_vertex(f, (*candidates.master)[m])) consider(&(*candidates.master)[m]);  // self-contact
@@ -561,7 +557,7 @@ void SurfaceContact::nodal_normals(fem::StateView u, const std::vector<char>& de
         if (!derive[i]) continue;
         for (int a = 0; a < ev.n(); ++a)
           for (int c = 0; c < D; ++c)
-            accumulate<Vec>(dm[i], static_cast<PetscInt>(f.nodes[a]) * D + c,
+            add_column<Vec>(dm[i], static_cast<PetscInt>(f.nodes[a]) * D + c,
                             wphi * facets::normal_variation<D>(f, p.dx, p.dN_of(a), c));
       }
     }
@@ -665,7 +661,7 @@ void SurfaceContact::kinematics(double t, fem::StateView u, const double* lambda
     if (record) found_.facet_points[k] = static_cast<int>(found_.points.size());
     if (!evaluated_here(f)) continue;
     const bool forces_here = r_u && adds_forces(f);
-    MasterCandidates<D> candidates{&tree, &master_facets_, {},
+    MasterCandidates<D> candidates{&tree, &master_facets_, {}, &hits,
                                    settings_.master_point == ContactSettings::MasterPoint::Closest};
     std::vector<std::pair<Param, double>> points;
     if (replay) {
