@@ -161,7 +161,10 @@ void KspSolver::setup(const nonlinear::NewtonSystem& system) {
   STICTION_PETSC(KSPSetOperators(ksp_, system.matrix, system.matrix));
   const double heap_before = heap_in_use_mb();
   configure(system);
+  if (options_rtol_ > 0)
+    STICTION_PETSC(KSPSetTolerances(ksp_, options_rtol_, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
   STICTION_PETSC(KSPSetFromOptions(ksp_));
+  if (!(options_rtol_ > 0)) options_rtol_ = relative_tolerance();
   // A no-op for a KSP that is not GMRES or FGMRES (PETSc's KSPGMRESSetRestart tries the method).
   if (krylov_restart_ > 0) STICTION_PETSC(KSPGMRESSetRestart(ksp_, krylov_restart_));
   install_stagnation_test();
@@ -340,6 +343,16 @@ void KspSolver::release() {
 
 void KspSolver::set_relative_tolerance(double rtol) {
   STICTION_PETSC(KSPSetTolerances(ksp_, rtol, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
+}
+
+double KspSolver::relative_tolerance() const {
+  KSPType type;
+  STICTION_PETSC(KSPGetType(ksp_, &type));
+  if (type && std::string(type) == KSPPREONLY) return 0;
+  PetscReal rtol, abstol, dtol;
+  PetscInt max_it;
+  STICTION_PETSC(KSPGetTolerances(ksp_, &rtol, &abstol, &dtol, &max_it));
+  return rtol;
 }
 
 void KspSolver::apply_preconditioner(Vec in, Vec out) const {

@@ -56,6 +56,7 @@ public:
   std::string describe() const override;
   void apply_preconditioner(Vec in, Vec out) const override;
   void set_relative_tolerance(double rtol) override;
+  double relative_tolerance() const override;
   void set_krylov_restart(int restart) override { krylov_restart_ = restart; }
   void release() override;
   bool continue_longer(const nonlinear::NewtonSystem& system, Vec x, nonlinear::LinearSolveStats& s) override;
@@ -91,6 +92,9 @@ private:
   PetscKSP ksp_;
   StagnationTest* stagnation_ = nullptr;  // owned by the KSP (its convergence-test context)
   double setup_seconds_ = 0;
+  // The options' -ksp_rtol, read at the first set-up: every set-up starts from it, so a
+  // tolerance set for one solve does not stay when the options do not name one.
+  double options_rtol_ = 0;
   int krylov_restart_ = 0;  // set_krylov_restart's, applied after the options at each set-up (0: the options')
   double krylov_mb_ = 0;  // heap the KSP's work vectors hold: grown over the solves since release()
   std::string setup_output_;

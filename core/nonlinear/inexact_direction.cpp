@@ -1,5 +1,6 @@
 #include "nonlinear/inexact_direction.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace stiction::nonlinear {
@@ -16,6 +17,11 @@ bool usable_direction(const LinearSolveStats& s, double terminal_residual) {
   if (rtol == s.extra.end() || !(s.initial_residual > 0) || !std::isfinite(s.final_residual)) return false;
   return s.final_residual <= kUsableForcingFactor * rtol->second * s.initial_residual ||
          s.final_residual <= terminal_residual;
+}
+
+double terminal_forcing(double rtol, double terminal_residual, double rhs_norm) {
+  if (!(rhs_norm > 0) || !(terminal_residual > 0) || !(rtol > 0)) return rtol;
+  return std::max(rtol, std::min(kMaxTerminalForcing, terminal_residual / rhs_norm));
 }
 
 }  // namespace stiction::nonlinear

@@ -43,6 +43,9 @@ public:
   // Relative tolerance of the next solve: the inexact-Newton forcing term. Iterative
   // backends apply it after set-up (it overrides their -ksp_rtol); direct ones ignore it.
   virtual void set_relative_tolerance(double rtol) {}
+  // The relative tolerance the next solve stops at: after set-up the backend's own
+  // (-ksp_rtol), or the last set_relative_tolerance. 0 for a direct backend.
+  virtual double relative_tolerance() const { return 0; }
   // Restart of the GMRES solves from the next set-up on, in place of the backend's
   // -ksp_gmres_restart (0: the backend's). Backends without a restarted Krylov method ignore it.
   virtual void set_krylov_restart(int restart) {}

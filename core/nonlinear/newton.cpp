@@ -429,9 +429,16 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
     if (it == 0) res.reference_residual = std::max(rnorm, lifting_.free_norm(layout_, builder_.system().rhs));
 
     linear_.setup(builder_.system());
-    set_krylov_tolerance(it == 0, rnorm, res.reference_residual, forcing);
-    if (!solve_for_direction(step, it, terminal_linear_residual(res.reference_residual, c_reference, pending), du,
-                             rec.linear)) {
+    const double terminal = terminal_linear_residual(res.reference_residual, c_reference, pending);
+    // The tolerance is raised to the terminal residual only once the contact states have
+    // settled (the last update changed none): while they change, the multipliers of the next
+    // iterate decide states, and loose solves there flip nodes near their thresholds.
+    // Measured on block-strips level 1 with schur-amg, raised at every iteration: step 6
+    // took 19 Newton iterations instead of 16 (residual 3.1e-6 -> 1.7e-5 -> 1.0e-2 after
+    // two flips), and the step's Krylov total was unchanged.
+    const bool states_settled = last_changes == 0;  // held (unchecked) states count as unchanged
+    set_krylov_tolerance(it == 0, rnorm, res.reference_residual, states_settled ? terminal : 0.0, forcing);
+    if (!solve_for_direction(step, it, terminal, du, rec.linear)) {
       keep_iteration(rec);
       res.detail = linear_failure_detail(rec.linear);
       return finish(NewtonReason::DivergedLinearSolver);
@@ -563,10 +570,12 @@ std::string QuasiStaticSolver::contact_residual_detail(double cnorm, double c_re
 // residual the Krylov tolerance is relative to): with contact, a load carried by the
 // constraints (a moving ground) leaves the displacement residual at zero at the first
 // iterate, and a ratio of displacement residuals would then stay infinite.
-void QuasiStaticSolver::set_krylov_tolerance(bool first, double rnorm, double reference, ForcingHistory& forcing) {
+void QuasiStaticSolver::set_krylov_tolerance(bool first, double rnorm, double reference, double terminal_residual,
+                                             ForcingHistory& forcing) {
+  PetscReal rhs_norm;
+  STICTION_PETSC(VecNorm(builder_.system().rhs, NORM_2, &rhs_norm));
+  double rtol = settings_.krylov_rtol > 0 ? settings_.krylov_rtol : linear_.relative_tolerance();
   if (settings_.forcing == Forcing::EisenstatWalker) {
-    PetscReal rhs_norm;
-    STICTION_PETSC(VecNorm(builder_.system().rhs, NORM_2, &rhs_norm));
     forcing.eta = next_forcing_term(forcing.eta, rhs_norm, forcing.rhs_prev, rnorm,
                                     std::max(settings_.atol, settings_.rtol * reference), first);
     forcing.rhs_prev = rhs_norm;
@@ -574,12 +583,12 @@ void QuasiStaticSolver::set_krylov_tolerance(bool first, double rnorm, double re
     // loose solves (eta up to 0.9) make the states flip. Measured on hertz-cylinder-2d
     // level 1 with schur-amg: uncapped, 25 iterations and 953 state changes without
     // converging; so eta never exceeds the fixed default there.
-    if (!lambda_.empty())
-      forcing.eta = std::min(forcing.eta, settings_.krylov_rtol > 0 ? settings_.krylov_rtol : kContactForcingCap);
-    linear_.set_relative_tolerance(forcing.eta);
-  } else if (settings_.krylov_rtol > 0) {
-    linear_.set_relative_tolerance(settings_.krylov_rtol);
+    rtol = lambda_.empty() ? forcing.eta
+                           : std::min(forcing.eta, settings_.krylov_rtol > 0 ? settings_.krylov_rtol : kContactForcingCap);
   }
+  // Either forcing: no solve goes below the residual Newton's stopping test reads.
+  rtol = terminal_forcing(rtol, terminal_residual, rhs_norm);
+  if (rtol > 0 && rtol != linear_.relative_tolerance()) linear_.set_relative_tolerance(rtol);
 }
 
 // A solve that gives no update is continued once with more memory where the backend can (a

@@ -62,12 +62,15 @@
 namespace stiction::nonlinear {
 
 // How tightly each linear system is solved (Krylov backends): Fixed keeps the backend's own
-// -ksp_rtol; EisenstatWalker is the inexact Newton of Dembo et al. that the paper relies on
-// (Sec. 5), with Eisenstat & Walker's choice 2 on the norms of successive Newton right sides
-// (gamma 0.9, alpha 2, first term 0.3, at most 0.9, at most the fixed rtol with contact,
-// safeguard when gamma eta^2 > 0.1, PETSc's SNES defaults) and Kelley's floor
-// 0.5 tol / ||r|| so the last steps are not over-solved. The Newton stopping test is the
-// same either way: only the work per linear solve changes.
+// -ksp_rtol (or newton.krylov_rtol); EisenstatWalker is the inexact Newton of Dembo et al.
+// that the paper relies on (Sec. 5), with Eisenstat & Walker's choice 2 on the norms of
+// successive Newton right sides (gamma 0.9, alpha 2, first term 0.3, at most 0.9, at most the
+// fixed rtol with contact, safeguard when gamma eta^2 > 0.1, PETSc's SNES defaults) and
+// Kelley's floor 0.5 tol / ||r||. Under both, once the contact states have settled, a solve
+// stops once its residual is below the one Newton's stopping test reads
+// (inexact_direction.hpp: terminal_forcing), so the last iteration of a load step is not
+// over-solved. The Newton stopping test is the same either
+// way: only the work per linear solve changes.
 enum class Forcing { Fixed, EisenstatWalker };
 Forcing forcing_from_string(const std::string& name);  // "fixed", "eisenstat-walker"
 std::string to_string(Forcing f);
@@ -298,12 +301,14 @@ private:
   std::string unacceptable_converged_state(const fem::InternalForceStatus& start,
                                            const fem::InternalForceStatus& accepted) const;
   std::string contact_residual_detail(double cnorm, double c_reference, int last_changes) const;
-  // The Krylov tolerance of the next solve: the scene's, or Eisenstat-Walker's from the
-  // right sides of the systems so far (see Forcing above).
+  // The Krylov tolerance of the next solve: the scene's (or the backend's), or
+  // Eisenstat-Walker's from the right sides of the systems so far (see Forcing above), raised
+  // where the solve would otherwise go below terminal_residual (terminal_forcing; 0: never).
   struct ForcingHistory {
     double eta = 0, rhs_prev = 0;
   };
-  void set_krylov_tolerance(bool first, double rnorm, double reference, ForcingHistory& forcing);
+  void set_krylov_tolerance(bool first, double rnorm, double reference, double terminal_residual,
+                            ForcingHistory& forcing);
   // The Newton update du of the assembled system; false when the solve gave none usable.
   bool solve_for_direction(int step, int it, double terminal_residual, Vec du, LinearSolveStats& stats);
   std::string linear_failure_detail(const LinearSolveStats& stats) const;

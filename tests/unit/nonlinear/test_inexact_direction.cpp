@@ -44,5 +44,22 @@ TEST(InexactDirection, NeverWithoutATolerancePositiveRightSideOrFiniteResidual) 
   EXPECT_FALSE(usable_direction(stagnated(1.0, std::numeric_limits<double>::infinity()), 1.0));
 }
 
+TEST(TerminalForcing, RaisesTheToleranceToWhatNewtonsStoppingTestReads) {
+  // A right side far above Newton's tolerance keeps the forcing term.
+  EXPECT_DOUBLE_EQ(terminal_forcing(1e-4, 0.5e-9, 1.0), 1e-4);
+  // block-strips level 2, the second solve of a pressing step: right side 8.4e-4, Newton's
+  // tolerance 1e-6 x 8.76 (half of it terminal): 5.2e-3 of the right side is enough.
+  EXPECT_DOUBLE_EQ(terminal_forcing(1e-4, 0.5 * 8.76e-6, 8.4e-4), 0.5 * 8.76e-6 / 8.4e-4);
+  // Never looser than kMaxTerminalForcing, and a looser forcing term stays.
+  EXPECT_DOUBLE_EQ(terminal_forcing(1e-4, 1.0, 2.0), kMaxTerminalForcing);
+  EXPECT_DOUBLE_EQ(terminal_forcing(0.3, 1.0, 2.0), 0.3);
+}
+
+TEST(TerminalForcing, UnchangedWithoutATerminalResidualARightSideOrATolerance) {
+  EXPECT_DOUBLE_EQ(terminal_forcing(1e-4, 0.0, 1e-6), 1e-4) << "a pending lifting has no terminal residual";
+  EXPECT_DOUBLE_EQ(terminal_forcing(1e-4, 1e-6, 0.0), 1e-4);
+  EXPECT_DOUBLE_EQ(terminal_forcing(0.0, 1e-6, 1e-6), 0.0) << "a direct backend has no tolerance to raise";
+}
+
 }  // namespace
 }  // namespace stiction::nonlinear
