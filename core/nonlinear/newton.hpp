@@ -66,11 +66,12 @@ namespace stiction::nonlinear {
 // that the paper relies on (Sec. 5), with Eisenstat & Walker's choice 2 on the norms of
 // successive Newton right sides (gamma 0.9, alpha 2, first term 0.3, at most 0.9, at most the
 // fixed rtol with contact, safeguard when gamma eta^2 > 0.1, PETSc's SNES defaults) and
-// Kelley's floor 0.5 tol / ||r||. Under both, once the contact states have settled, a solve
+// Kelley's floor 0.5 tol / ||r||. Under both (the fixed one at the backend's own tolerance:
+// a newton.krylov_rtol holds for every solve), once the contact states have settled, a solve
 // stops once its residual is below the one Newton's stopping test reads
 // (inexact_direction.hpp: terminal_forcing), so the last iteration of a load step is not
-// over-solved. The Newton stopping test is the same either
-// way: only the work per linear solve changes.
+// over-solved. The Newton stopping test is the same either way: only the work per linear
+// solve changes.
 enum class Forcing { Fixed, EisenstatWalker };
 Forcing forcing_from_string(const std::string& name);  // "fixed", "eisenstat-walker"
 std::string to_string(Forcing f);

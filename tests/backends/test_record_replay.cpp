@@ -157,17 +157,22 @@ TEST(RecordReplay, ReplaysWithTheRecordedGmresRestart) {
   const auto systems = recorded_system_dirs(rec.dir.string());
   ASSERT_EQ(systems.size(), rec.krylov_iterations.size());
   ASSERT_GE(systems.size(), 2u);
-  int recorded_total = 0, own_total = 0;
+  // The totals compare the solves recorded at the backend's own tolerance: Newton raises the
+  // tolerance of a load step's last solve (terminal_forcing), which "backend" would not.
+  int recorded_total = 0, own_total = 0, compared = 0;
   for (size_t k = 0; k < systems.size(); ++k) {
     SCOPED_TRACE(systems[k]);
-    EXPECT_EQ(load_system(systems[k], PETSC_COMM_WORLD).krylov_restart, 3);
+    const RecordedSystem system = load_system(systems[k], PETSC_COMM_WORLD);
+    EXPECT_EQ(system.krylov_restart, 3);
     const ReplayedSolve recorded = replay(systems[k], "schur-amg", "recorded");
     EXPECT_EQ(recorded.krylov_restart, 3);
     EXPECT_EQ(recorded.stats.iterations, rec.krylov_iterations[k]);
     const ReplayedSolve own = replay(systems[k], "schur-amg", "backend");
     EXPECT_EQ(own.krylov_restart, 100);
-    recorded_total += recorded.stats.iterations, own_total += own.stats.iterations;
+    if (system.krylov_rtol != own.stats.extra.at("ksp_rtol")) continue;
+    recorded_total += recorded.stats.iterations, own_total += own.stats.iterations, ++compared;
   }
+  ASSERT_GE(compared, 1);
   EXPECT_LT(own_total, recorded_total);  // the restart shaped the recorded counts
   EXPECT_EQ(replay_krylov_restart("recorded", 3, true), 0);
   EXPECT_EQ(replay_krylov_restart("1e-6", 3, false), 3);
