@@ -572,7 +572,8 @@ void QuasiStaticSolver::set_krylov_tolerance(bool first, double rnorm, double re
                                              ForcingHistory& forcing) {
   PetscReal rhs_norm;
   STICTION_PETSC(VecNorm(builder_.system().rhs, NORM_2, &rhs_norm));
-  double rtol = settings_.krylov_rtol > 0 ? settings_.krylov_rtol : linear_.relative_tolerance();
+  const bool rtol_given = settings_.krylov_rtol > 0;  // newton.krylov_rtol: set on purpose
+  double rtol = rtol_given ? settings_.krylov_rtol : linear_.relative_tolerance();
   if (settings_.forcing == Forcing::EisenstatWalker) {
     forcing.eta = next_forcing_term(forcing.eta, rhs_norm, forcing.rhs_prev, rnorm,
                                     std::max(settings_.atol, settings_.rtol * reference), first);
@@ -582,12 +583,12 @@ void QuasiStaticSolver::set_krylov_tolerance(bool first, double rnorm, double re
     // level 1 with schur-amg: uncapped, 25 iterations and 953 state changes without
     // converging; so eta never exceeds the fixed default there.
     rtol = lambda_.empty() ? forcing.eta
-                           : std::min(forcing.eta, settings_.krylov_rtol > 0 ? settings_.krylov_rtol : kContactForcingCap);
+                           : std::min(forcing.eta, rtol_given ? settings_.krylov_rtol : kContactForcingCap);
   }
   // No solve goes below the residual Newton's stopping test reads, unless the scene or the
   // command line set the tolerance on purpose (newton.krylov_rtol): sweeps over it, and the
   // tight solves the ironing scenes need to keep the exact path, mean it for every solve.
-  if (settings_.forcing == Forcing::EisenstatWalker || !(settings_.krylov_rtol > 0))
+  if (settings_.forcing == Forcing::EisenstatWalker || !rtol_given)
     rtol = terminal_forcing(rtol, terminal_residual, rhs_norm);
   if (rtol > 0 && rtol != linear_.relative_tolerance()) linear_.set_relative_tolerance(rtol);
 }

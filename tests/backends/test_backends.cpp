@@ -359,4 +359,3 @@ TEST(Registry, DefaultOptionsExpandTheirSharedParts) {
 
 }  // namespace
 }  // namespace stiction
-
