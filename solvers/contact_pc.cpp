@@ -8,6 +8,7 @@
 #include "common/error.hpp"
 #include "field_sets.hpp"
 #include "multiplier_schur_parts.hpp"
+#include "rational_fractional_schur.hpp"
 #include "solver_figures.hpp"
 
 namespace stiction::solvers {
@@ -47,19 +48,37 @@ ContactPreconditioner::Factorisation ContactPreconditioner::factorisation_from_o
   throw Error(fmt::format("-{}contact_fact: '{}' is none of full, upper or lower", prefix_, v));
 }
 
-PetscMat ContactPreconditioner::fractional_from_options(Mat mass, Mat stiffness) {
+PetscMat ContactPreconditioner::fractional_from_options(Mat mass, Mat stiffness, Mat slip_coupling) {
   fit_ = {};
-  char value[16] = "fractional";
+  rational_active_ = false;
+  char value[16] = "fractional", form_value[16] = "auto";
   PetscBool set;
   STICTION_PETSC(PetscOptionsGetString(nullptr, prefix_.c_str(), "-contact_schur", value, sizeof value, &set));
   const std::string v = value;
   if (v == "mass") return {};
   if (v != "fractional") throw Error(fmt::format("-{}contact_schur: '{}' is neither mass nor fractional", prefix_, v));
+  STICTION_PETSC(
+      PetscOptionsGetString(nullptr, prefix_.c_str(), "-contact_fractional_form", form_value, sizeof form_value, &set));
+  const std::string form = form_value;
+  if (form != "auto" && form != "dense" && form != "rational")
+    throw Error(fmt::format("-{}contact_fractional_form: '{}' is none of auto, dense or rational", prefix_, form));
   PetscInt max_rows = 1500, dim;
   STICTION_PETSC(PetscOptionsGetInt(nullptr, prefix_.c_str(), "-contact_fractional_max_rows", &max_rows, &set));
   STICTION_PETSC(ISGetBlockSize(is_l_, &dim));
-  return fractional_compliance(mass, stiffness, static_cast<int>(dim), estimates_.diagonal, estimates_.smooth,
-                               static_cast<int>(max_rows), fit_);
+  if (form != "rational") {
+    PetscMat G = fractional_compliance(mass, stiffness, static_cast<int>(dim), estimates_.diagonal,
+                                       estimates_.smooth, static_cast<int>(max_rows), fit_);
+    PetscMPIInt processes;
+    MPI_Comm_size(PetscObjectComm(reinterpret_cast<PetscObject>(mass)), &processes);
+    if (G || form == "dense" || fit_.rows <= max_rows || processes > 1) return G;
+  }
+  // The rational form: S~ solved through the scaled mass's S~ and a right-side correction.
+  PetscReal tolerance = 1e-2;
+  STICTION_PETSC(PetscOptionsGetReal(nullptr, prefix_.c_str(), "-contact_fractional_tol", &tolerance, &set));
+  if (!rational_) rational_ = std::make_unique<RationalFractionalCorrection>();
+  rational_active_ = rational_->setup(mass, stiffness, D_, slip_coupling, static_cast<int>(dim), scale_,
+                                      estimates_.diagonal, estimates_.smooth, tolerance, fit_);
+  return {};
 }
 
 double ContactPreconditioner::diagonal_compliance(Mat M, Mat mass) const {
@@ -165,9 +184,9 @@ void ContactPreconditioner::setup(Mat M, IS multipliers, const nonlinear::Multip
   scale_ = scale_from_options(M, parts.mass);
   factorisation_ = factorisation_from_options();
   STICTION_PETSC(MatDuplicate(D_, MAT_COPY_VALUES, S_.out()));
-  if (PetscMat G = fractional_from_options(parts.mass, parts.laplacian); G)
+  if (PetscMat G = fractional_from_options(parts.mass, parts.laplacian, parts.slip_coupling); G)
     STICTION_PETSC(MatAXPY(S_, 1.0, G, DIFFERENT_NONZERO_PATTERN));
-  else
+  else  // also the rational form's S_m
     STICTION_PETSC(MatAXPY(S_, scale_, parts.mass, DIFFERENT_NONZERO_PATTERN));
   STICTION_PETSC(MatAXPY(S_, scale_, parts.slip_coupling, DIFFERENT_NONZERO_PATTERN));
   // PETSc 3.18's LU with inodes and a fill-reducing ordering (nd, rcm) met a zero pivot and
@@ -191,9 +210,12 @@ double ContactPreconditioner::copied_blocks_mb() const {
 void ContactPreconditioner::release() {
   STICTION_PETSC(KSPReset(ksp_ss_));
   B1_.reset(), B2_.reset(), D_.reset(), S_.reset();
+  rational_.reset();
+  rational_active_ = false;
 }
 
 void ContactPreconditioner::set_schur_operator(Mat S) {
+  rational_active_ = false;
   STICTION_PETSC(KSPSetOperators(ksp_ss_, S, S));
   STICTION_PETSC(KSPSetUp(ksp_ss_));
 }
@@ -201,6 +223,11 @@ void ContactPreconditioner::set_schur_operator(Mat S) {
 Mat ContactPreconditioner::block(int row, int col) const {
   if (row == 0) return col == 1 ? B1_.get() : nullptr;
   return col == 0 ? B2_.get() : D_.get();
+}
+
+void ContactPreconditioner::solve_schur(Vec b, Vec x) const {
+  if (rational_active_) rational_->correct(b, b);
+  STICTION_PETSC(KSPSolve(ksp_ss_, b, x));
 }
 
 void ContactPreconditioner::apply(Vec r, Vec x) const {
@@ -219,7 +246,7 @@ void ContactPreconditioner::apply(Vec r, Vec x) const {
   }
   STICTION_PETSC(VecRestoreSubVector(r, is_l_, &r_l));
   STICTION_PETSC(VecGetSubVector(x, is_l_, &x_l));
-  STICTION_PETSC(KSPSolve(ksp_ss_, work_l_, x_l));  // x_lambda = S~^-1 work_l_
+  solve_schur(work_l_, x_l);
   if (factorisation_ != Factorisation::Lower) STICTION_PETSC(MatMult(B1_, x_l, work_a_));
   STICTION_PETSC(VecRestoreSubVector(x, is_l_, &x_l));
   if (factorisation_ == Factorisation::Lower) {  // x_a = y

@@ -15,8 +15,12 @@
 //
 //   fractional (default): the order -1 model of fractional_schur.hpp, calibrated by the two
 //              compliance estimates below; falls back to `mass` (auto scale) when the
-//              estimates do not bracket (smooth <= diagonal) or the zone exceeds
-//              -<prefix>contact_fractional_max_rows (1500) directions;
+//              estimates do not bracket (smooth <= diagonal). -<prefix>contact_fractional_form:
+//              dense (its eigendecomposition; `mass` above -<prefix>contact_fractional_max_rows,
+//              1500 rows), rational (rational_fractional_schur.hpp: sparse factorisations of
+//              the surface, model error below -<prefix>contact_fractional_tol, 1e-2; one
+//              process), or auto (default): dense up to max_rows, rational above it on one
+//              process;
 //   mass:      the paper's (32), G = s Pi M_lambda Pi.
 //
 // The paper gives no scale for (32); s has the units of a compliance, and the Schur
@@ -59,10 +63,12 @@
 // S~ is solved by its own KSP (<prefix>ss_, a direct solve by default: it lives on the slave
 // surface only). With exact inner solves and S~ = S_g the full form is the exact inverse
 // (tests/backends).
+#include <memory>
 #include <string>
 
 #include "fractional_schur.hpp"
 #include "hierarchical_pc.hpp"
+#include "rational_fractional_schur.hpp"
 #include "nonlinear/newton_system.hpp"
 
 namespace stiction::solvers {
@@ -91,15 +97,19 @@ public:
   // The fractional model's fit at the last setup(); fitted is false with the scaled mass.
   const FractionalFit& fractional_fit() const { return fit_; }
   KSP schur_solver() const { return ksp_ss_; }
-  Mat schur_approximation() const { return S_; }  // S~ of the last setup()
+  // S~ of the last setup(); with the rational fractional form, the scaled-mass S~ that
+  // solve_schur corrects.
+  Mat schur_approximation() const { return S_; }
+  void solve_schur(Vec b, Vec x) const;  // x = S~^-1 b; b is overwritten
   Mat block(int row, int col) const;  // 0 = a (u, p), 1 = lambda
 
   enum class Factorisation { Full, Upper, Lower };
 
 private:
   Factorisation factorisation_from_options() const;
-  // G of the fractional model, or an empty handle for the scaled mass (32).
-  PetscMat fractional_from_options(Mat mass, Mat stiffness);
+  // G of the fractional model's dense form, or an empty handle: then S_ holds the scaled
+  // mass (32), and rational_active_ says whether the rational form corrects its right sides.
+  PetscMat fractional_from_options(Mat mass, Mat stiffness, Mat slip_coupling);
   double scale_from_options(Mat M, Mat mass);
   double diagonal_compliance(Mat M, Mat mass) const;
   double smooth_mode_compliance(Mat M, Mat mass) const;  // 0 when the probe gives no positive value
@@ -110,6 +120,8 @@ private:
   PetscIS is_a_, is_l_;
   PetscMat B1_, B2_, D_, S_;
   PetscVec work_, work2_, work_l_, work_a_;
+  std::unique_ptr<RationalFractionalCorrection> rational_;
+  bool rational_active_ = false;
   double scale_ = 1;
   Factorisation factorisation_ = Factorisation::Full;
   FractionalFit fit_;

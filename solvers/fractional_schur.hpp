@@ -23,9 +23,8 @@
 // Cost: a dense generalised eigenproblem on the constrained directions (every rank holds
 // them; they live on the contact zone only): ~n_c^3 flops once per Newton iteration, a few
 // ms for the n_c <= 300 of the built-in scenes. Above max_rows no model is built and the
-// caller falls back to the scaled mass; a contact zone of many thousand nodes (the paper's
-// block with strips at its finest level) would need the model applied matrix-free
-// (a Lanczos or Chebyshev approximation of (K + beta M)^1/2), which is not written.
+// caller uses the model's rational form (rational_fractional_schur.hpp) on one process, and
+// the scaled mass on several.
 
 #include "common/petsc.hpp"
 
@@ -35,6 +34,10 @@ struct FractionalFit {
   bool fitted = false;  // false: s_smooth <= s_high, or too many rows; G was not built
   double beta = 0, mu_max = 0;
   int rows = 0;  // constrained directions (the model's size)
+  // The rational form (rational_fractional_schur.hpp): its quadrature nodes and the largest
+  // relative error of its g over the spectrum; 0 for the dense form.
+  int quadrature_nodes = 0;
+  double quadrature_error = 0;
 };
 
 // G on the multiplier numbering of `mass` (zero outside the constrained rows), or an empty

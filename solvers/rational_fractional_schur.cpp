@@ -1,0 +1,228 @@
+#include "rational_fractional_schur.hpp"
+
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "common/error.hpp"
+
+namespace stiction::solvers {
+namespace {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+SparseMatrix to_eigen(Mat m) {
+  PetscInt rows, cols;
+  STICTION_PETSC(MatGetSize(m, &rows, &cols));
+  std::vector<Eigen::Triplet<double>> entries;
+  for (PetscInt i = 0; i < rows; ++i) {
+    PetscInt n;
+    const PetscInt* c;
+    const PetscScalar* v;
+    STICTION_PETSC(MatGetRow(m, i, &n, &c, &v));
+    for (PetscInt k = 0; k < n; ++k) entries.emplace_back(i, c[k], v[k]);
+    STICTION_PETSC(MatRestoreRow(m, i, &n, &c, &v));
+  }
+  SparseMatrix out(rows, cols);
+  out.setFromTriplets(entries.begin(), entries.end());
+  return out;
+}
+
+// The constrained directions as the columns of T (Pi T = T, T^T T = I), node by node: the
+// range of each node's diagonal block of Pi M Pi, as the dense model takes them.
+SparseMatrix constrained_directions(const SparseMatrix& mass, int dim) {
+  const Eigen::Index n = mass.rows();
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::Index directions = 0;
+  for (Eigen::Index node = 0; node < n; node += dim) {
+    const Eigen::MatrixXd block = Eigen::MatrixXd(mass.block(node, node, dim, dim));
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(block);
+    const double largest = eig.eigenvalues().cwiseAbs().maxCoeff();
+    for (int k = 0; k < dim; ++k) {
+      if (!(eig.eigenvalues()[k] > 1e-10 * largest)) continue;
+      for (int c = 0; c < dim; ++c) entries.emplace_back(node + c, directions, eig.eigenvectors()(c, k));
+      ++directions;
+    }
+  }
+  SparseMatrix T(n, directions);
+  T.setFromTriplets(entries.begin(), entries.end());
+  return T;
+}
+
+// Ritz values of M^-1 K from a Lanczos run in the M inner product started from q, and the
+// Gauss quadrature weights of the start vector on them: q^T M f(M^-1 K) q / q^T M q is
+// approximately sum_i weights_i f(values_i). Fully reorthogonalised (the runs are short).
+struct Ritz {
+  Eigen::VectorXd values, weights;
+};
+
+Ritz lanczos(const SparseMatrix& K, const SparseMatrix& M, const Eigen::SimplicialLDLT<SparseMatrix>& M_solver,
+             Eigen::VectorXd q, int steps) {
+  steps = static_cast<int>(std::min<Eigen::Index>(steps, q.size()));
+  std::vector<Eigen::VectorXd> basis;
+  std::vector<double> alpha, beta;
+  q /= std::sqrt(q.dot(M * q));
+  for (int j = 0; j < steps; ++j) {
+    basis.push_back(q);
+    const Eigen::VectorXd Kq = K * q;
+    alpha.push_back(q.dot(Kq));
+    Eigen::VectorXd u = M_solver.solve(Kq);
+    for (int pass = 0; pass < 2; ++pass) {  // classical Gram-Schmidt twice
+      const Eigen::VectorXd Mu = M * u;
+      Eigen::VectorXd projection = Eigen::VectorXd::Zero(u.size());
+      for (const auto& b : basis) projection += b.dot(Mu) * b;
+      u -= projection;
+    }
+    const double norm = std::sqrt(std::max(0.0, u.dot(M * u)));
+    if (j + 1 == steps || !(norm > 1e-12 * std::abs(alpha.front()))) break;  // or an invariant subspace
+    beta.push_back(norm);
+    q = u / norm;
+  }
+  const Eigen::Index m = static_cast<Eigen::Index>(alpha.size());
+  Eigen::MatrixXd tridiagonal = Eigen::MatrixXd::Zero(m, m);
+  for (Eigen::Index i = 0; i < m; ++i) tridiagonal(i, i) = alpha[i];
+  for (Eigen::Index i = 0; i + 1 < m; ++i) tridiagonal(i, i + 1) = tridiagonal(i + 1, i) = beta[i];
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(tridiagonal);
+  return {eig.eigenvalues().cwiseMax(0.0), eig.eigenvectors().row(0).transpose().array().square().matrix()};
+}
+
+// x^-1/2 ~ sum_k weight_k / (x + shift_k) on [x_low, x_high] (trapezoidal rule in y of
+// (2/pi) int e^y / (x + e^2y) dy), truncated and stepped from the error estimates below; the
+// step shrinks until the error, checked on a grid, is below the tolerance.
+struct Quadrature {
+  std::vector<double> weight, shift;
+  double error = 0;
+};
+
+Quadrature inverse_square_root(double x_low, double x_high, double tolerance) {
+  // Each tail and the discretisation error (about 2 exp(-pi^2 / step): the integrand's poles
+  // lie at Im y = pi / 2) get a quarter of the tolerance.
+  const double tail = std::log(8.0 / (std::numbers::pi * tolerance));
+  double step = std::numbers::pi * std::numbers::pi / std::log(8.0 / tolerance);
+  const double y_low = 0.5 * std::log(x_low) - tail, y_high = 0.5 * std::log(x_high) + tail;
+  Quadrature q;
+  for (int attempt = 0; attempt < 8; ++attempt, step *= 0.8) {
+    q = {};
+    const int nodes = static_cast<int>(std::ceil((y_high - y_low) / step)) + 1;
+    for (int k = 0; k < nodes; ++k) {
+      const double y = y_low + k * step;
+      q.weight.push_back(2.0 / std::numbers::pi * step * std::exp(y));
+      q.shift.push_back(std::exp(2 * y));
+    }
+    for (int i = 0; i <= 400; ++i) {
+      const double x = x_low * std::pow(x_high / x_low, i / 400.0);
+      double sum = 0;
+      for (size_t k = 0; k < q.weight.size(); ++k) sum += q.weight[k] / (x + q.shift[k]);
+      q.error = std::max(q.error, std::abs(sum * std::sqrt(x) - 1));
+    }
+    if (q.error <= tolerance) break;
+  }
+  return q;
+}
+
+}  // namespace
+
+struct RationalFractionalCorrection::Factors {
+  SparseMatrix T, M, K;
+  std::vector<std::unique_ptr<Eigen::SimplicialLDLT<SparseMatrix>>> shifted;  // K + sigma_k M
+  Eigen::SimplicialLDLT<SparseMatrix> M_solver;
+  std::vector<double> weight;
+  double beta = 0, C = 1, s = 1;
+};
+
+RationalFractionalCorrection::RationalFractionalCorrection() = default;
+RationalFractionalCorrection::~RationalFractionalCorrection() = default;
+
+bool RationalFractionalCorrection::setup(Mat mass, Mat stiffness, Mat D, Mat slip_coupling, int dim, double s,
+                                         double s_high, double s_smooth, double tolerance, FractionalFit& fit) {
+  fit = {};
+  factors_.reset();
+  PetscMPIInt processes;
+  MPI_Comm_size(PetscObjectComm(reinterpret_cast<PetscObject>(mass)), &processes);
+  if (processes > 1) throw Error("the rational fractional contact model runs on one process only");
+  if (!(s_high > 0) || !(s_smooth > s_high)) return false;
+  auto f = std::make_unique<Factors>();
+  const SparseMatrix full_mass = to_eigen(mass);
+  f->T = constrained_directions(full_mass, dim);
+  fit.rows = static_cast<int>(f->T.cols());
+  if (f->T.cols() < 2) return false;
+  for (Mat rest : {D, slip_coupling}) {
+    const SparseMatrix rows = f->T.transpose() * to_eigen(rest);
+    if (rows.norm() > 1e-12 * std::max(1.0, to_eigen(rest).norm()))
+      throw Error("rational fractional contact model: S~ has a constrained row outside G (T^T S0 != 0)",
+                  ErrorKind::Internal);
+  }
+  f->M = f->T.transpose() * full_mass * f->T;
+  f->K = f->T.transpose() * to_eigen(stiffness) * f->T;
+  f->M_solver.compute(f->M);
+  if (f->M_solver.info() != Eigen::Success) return false;
+
+  // The spectrum's ends and the smooth probe's quadrature (the dense model's fit).
+  constexpr int kLanczosSteps = 40;
+  Eigen::VectorXd rough(f->T.cols());
+  for (Eigen::Index i = 0; i < rough.size(); ++i) rough[i] = std::sin(1.0 + 0.7 * static_cast<double>(i));
+  // The smooth probe of the body-end estimate, w_i = (M 1)_i / sum_j |M_ij| on the rows of
+  // Pi M Pi, in the constrained directions.
+  const Eigen::VectorXd ones = Eigen::VectorXd::Ones(full_mass.cols());
+  const Eigen::VectorXd w_rows =
+      ((full_mass * ones).array() / (full_mass.cwiseAbs() * ones).array().max(1e-300)).matrix();
+  const Ritz smooth = lanczos(f->K, f->M, f->M_solver, f->T.transpose() * w_rows, kLanczosSteps);
+  fit.mu_max =
+      std::max(lanczos(f->K, f->M, f->M_solver, rough, kLanczosSteps).values.maxCoeff(), smooth.values.maxCoeff());
+  if (!(fit.mu_max > 0)) return false;
+  auto g = [&](double m, double beta) { return s_high * std::sqrt((fit.mu_max + beta) / (m + beta)); };
+  auto rayleigh = [&](double beta) {
+    double sum = 0;
+    for (Eigen::Index i = 0; i < smooth.values.size(); ++i) sum += g(smooth.values[i], beta) * smooth.weights[i];
+    return sum;
+  };
+  double lo = std::log(fit.mu_max * 1e-12), hi = std::log(fit.mu_max * 1e12);
+  for (int it = 0; it < 200 && hi - lo > 1e-10; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (rayleigh(std::exp(mid)) > s_smooth ? lo : hi) = mid;
+  }
+  fit.beta = std::exp(0.5 * (lo + hi));
+
+  // X^-1/2 over the spectrum [beta, mu_max + beta], with a margin above: the largest Ritz
+  // value is a lower bound of mu_max.
+  const Quadrature q = inverse_square_root(fit.beta, 1.1 * fit.mu_max + fit.beta, tolerance);
+  for (size_t k = 0; k < q.weight.size(); ++k) {
+    const SparseMatrix shifted = f->K + (fit.beta + q.shift[k]) * f->M;
+    f->shifted.push_back(std::make_unique<Eigen::SimplicialLDLT<SparseMatrix>>(shifted));
+    if (f->shifted.back()->info() != Eigen::Success) return false;
+  }
+  f->weight = q.weight;
+  f->beta = fit.beta;
+  f->C = s_high * std::sqrt(fit.mu_max + fit.beta);
+  f->s = s;
+  fit.quadrature_nodes = static_cast<int>(q.weight.size());
+  fit.quadrature_error = q.error;
+  fit.fitted = true;
+  factors_ = std::move(f);
+  return true;
+}
+
+void RationalFractionalCorrection::correct(Vec b, Vec out) const {
+  const Factors& f = *factors_;
+  PetscInt n;
+  STICTION_PETSC(VecGetLocalSize(b, &n));
+  const PetscScalar* b_array;
+  STICTION_PETSC(VecGetArrayRead(b, &b_array));
+  const Eigen::VectorXd r = f.T.transpose() * Eigen::Map<const Eigen::VectorXd>(b_array, n);
+  STICTION_PETSC(VecRestoreArrayRead(b, &b_array));
+  // a = G^-1 r = C^-1 M^-1 (K + beta M) sum_k w_k (K + sigma_k M)^-1 r
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(r.size());
+  for (size_t k = 0; k < f.shifted.size(); ++k) y += f.weight[k] * f.shifted[k]->solve(r);
+  const Eigen::VectorXd a = f.M_solver.solve(f.K * y + f.beta * (f.M * y)) / f.C;
+  const Eigen::VectorXd change = f.T * (f.s * (f.M * a) - r);
+  if (out != b) STICTION_PETSC(VecCopy(b, out));
+  PetscScalar* o;
+  STICTION_PETSC(VecGetArray(out, &o));
+  Eigen::Map<Eigen::VectorXd>(o, n) += change;
+  STICTION_PETSC(VecRestoreArray(out, &o));
+}
+
+}  // namespace stiction::solvers
