@@ -149,11 +149,9 @@ bool RationalFractionalCorrection::setup(Mat mass, Mat stiffness, Mat D, Mat sli
   f->T = constrained_directions(full_mass, dim);
   fit.rows = static_cast<int>(f->T.cols());
   if (f->T.cols() < 2) return false;
-  for (Mat rest : {D, slip_coupling}) {
-    const SparseMatrix rows = f->T.transpose() * to_eigen(rest);
-    if (rows.norm() > 1e-12 * std::max(1.0, to_eigen(rest).norm()))
-      throw Error("rational fractional contact model: S~ has a constrained row outside G (T^T S0 != 0)",
-                  ErrorKind::Internal);
+  for (Mat rest : {D, slip_coupling}) {  // the split of S~ x = b needs T^T S0 = 0
+    const SparseMatrix full_rest = to_eigen(rest);
+    if (SparseMatrix(f->T.transpose() * full_rest).norm() > 1e-12 * std::max(1.0, full_rest.norm())) return false;
   }
   f->M = f->T.transpose() * full_mass * f->T;
   f->K = f->T.transpose() * to_eigen(stiffness) * f->T;

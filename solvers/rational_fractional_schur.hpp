@@ -42,7 +42,8 @@ public:
   // mass = Pi M Pi and stiffness = Pi K Pi on the multiplier numbering, dim multiplier
   // components per node; D and slip_coupling the rest of S~ (checked to have no constrained
   // row); s the scaled mass's factor in S_m. False, with fit.fitted false, when the
-  // estimates do not bracket (s_smooth <= s_high) or the zone has fewer than 2 directions.
+  // estimates do not bracket (s_smooth <= s_high), the zone has fewer than 2 directions or
+  // D or the slip coupling has a constrained row: the caller keeps the scaled mass.
   bool setup(Mat mass, Mat stiffness, Mat D, Mat slip_coupling, int dim, double s, double s_high, double s_smooth,
              double tolerance, FractionalFit& fit);
   // out = b - T T^T b + s T M G^-1 T^T b (out may be b).
