@@ -18,11 +18,15 @@ ContactPreconditioner::ContactPreconditioner(MPI_Comm comm, const std::string& p
   STICTION_PETSC(KSPSetOptionsPrefix(ksp_ss_, (prefix + "ss_").c_str()));
 }
 
-double ContactPreconditioner::scale_from_options(Mat M, Mat mass) {
-  char value[64] = "auto";
+std::string ContactPreconditioner::option(const char* name, const char* fallback) const {
+  char value[64];
   PetscBool set;
-  STICTION_PETSC(PetscOptionsGetString(nullptr, prefix_.c_str(), "-contact_scale", value, sizeof value, &set));
-  const std::string v = value;
+  STICTION_PETSC(PetscOptionsGetString(nullptr, prefix_.c_str(), name, value, sizeof value, &set));
+  return set ? value : fallback;
+}
+
+double ContactPreconditioner::scale_from_options(Mat M, Mat mass) {
+  const std::string v = option("-contact_scale", "auto");
   estimates_.diagonal = diagonal_compliance(M, mass);
   estimates_.smooth = smooth_mode_compliance(M, mass);
   if (v == "auto")
@@ -30,7 +34,7 @@ double ContactPreconditioner::scale_from_options(Mat M, Mat mass) {
   if (v == "diagonal") return estimates_.diagonal;
   if (v == "smooth") return estimates_.smooth > 0 ? estimates_.smooth : estimates_.diagonal;
   char* end;
-  const double number = std::strtod(value, &end);
+  const double number = std::strtod(v.c_str(), &end);
   if (*end || !(number > 0))
     throw Error(fmt::format("-{}contact_scale: '{}' is none of auto, diagonal, smooth or a positive number", prefix_,
                             v));
@@ -38,10 +42,7 @@ double ContactPreconditioner::scale_from_options(Mat M, Mat mass) {
 }
 
 ContactPreconditioner::Factorisation ContactPreconditioner::factorisation_from_options() const {
-  char value[16] = "upper";
-  PetscBool set;
-  STICTION_PETSC(PetscOptionsGetString(nullptr, prefix_.c_str(), "-contact_fact", value, sizeof value, &set));
-  const std::string v = value;
+  const std::string v = option("-contact_fact", "upper");
   if (v == "full") return Factorisation::Full;
   if (v == "upper") return Factorisation::Upper;
   if (v == "lower") return Factorisation::Lower;
@@ -51,18 +52,14 @@ ContactPreconditioner::Factorisation ContactPreconditioner::factorisation_from_o
 PetscMat ContactPreconditioner::fractional_from_options(Mat mass, Mat stiffness, Mat slip_coupling) {
   fit_ = {};
   rational_active_ = false;
-  char value[16] = "fractional", form_value[16] = "auto";
-  PetscBool set;
-  STICTION_PETSC(PetscOptionsGetString(nullptr, prefix_.c_str(), "-contact_schur", value, sizeof value, &set));
-  const std::string v = value;
+  const std::string v = option("-contact_schur", "fractional");
   if (v == "mass") return {};
   if (v != "fractional") throw Error(fmt::format("-{}contact_schur: '{}' is neither mass nor fractional", prefix_, v));
-  STICTION_PETSC(
-      PetscOptionsGetString(nullptr, prefix_.c_str(), "-contact_fractional_form", form_value, sizeof form_value, &set));
-  const std::string form = form_value;
+  const std::string form = option("-contact_fractional_form", "auto");
   if (form != "auto" && form != "dense" && form != "rational")
     throw Error(fmt::format("-{}contact_fractional_form: '{}' is none of auto, dense or rational", prefix_, form));
   PetscInt max_rows = 1500, dim;
+  PetscBool set;
   STICTION_PETSC(PetscOptionsGetInt(nullptr, prefix_.c_str(), "-contact_fractional_max_rows", &max_rows, &set));
   STICTION_PETSC(ISGetBlockSize(is_l_, &dim));
   if (form != "rational") {

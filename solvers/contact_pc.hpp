@@ -106,6 +106,7 @@ public:
   enum class Factorisation { Full, Upper, Lower };
 
 private:
+  std::string option(const char* name, const char* fallback) const;  // -<prefix><name> as given, or fallback
   Factorisation factorisation_from_options() const;
   // G of the fractional model's dense form, or an empty handle: then S_ holds the scaled
   // mass (32), and rational_active_ says whether the rational form corrects its right sides.

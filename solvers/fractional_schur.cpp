@@ -82,23 +82,48 @@ PetscMat scatter_dense(Mat like, IS rows, const Eigen::MatrixXd& G) {
   return out;
 }
 
-// The constrained directions as columns (Pi T = T, T^T T = I), block by block: the range of
-// each node's diagonal block of Pi M Pi (all of R^dim at a sticking node, the normal at a
-// slipping one).
+// The constrained directions as columns (Pi T = T, T^T T = I), node by node.
 Eigen::MatrixXd constrained_directions(const Eigen::MatrixXd& M, int dim) {
   const Eigen::Index n = M.rows();
   Eigen::MatrixXd T = Eigen::MatrixXd::Zero(n, n);
   Eigen::Index columns = 0;
   for (Eigen::Index node = 0; node < n; node += dim) {
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> block(M.block(node, node, dim, dim));
-    const double largest = block.eigenvalues().cwiseAbs().maxCoeff();
-    for (int k = 0; k < dim; ++k)
-      if (block.eigenvalues()[k] > 1e-10 * largest) T.block(node, columns++, dim, 1) = block.eigenvectors().col(k);
+    const Eigen::MatrixXd directions = node_constrained_directions(M.block(node, node, dim, dim));
+    T.block(node, columns, dim, directions.cols()) = directions;
+    columns += directions.cols();
   }
   return T.leftCols(columns);
 }
 
 }  // namespace
+
+Eigen::MatrixXd node_constrained_directions(const Eigen::MatrixXd& block) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(block);
+  const double largest = eig.eigenvalues().cwiseAbs().maxCoeff();
+  Eigen::MatrixXd directions(block.rows(), 0);
+  for (Eigen::Index k = 0; k < block.rows(); ++k) {
+    if (!(eig.eigenvalues()[k] > 1e-10 * largest)) continue;
+    directions.conservativeResize(Eigen::NoChange, directions.cols() + 1);
+    directions.col(directions.cols() - 1) = eig.eigenvectors().col(k);
+  }
+  return directions;
+}
+
+double fit_fractional_beta(const Eigen::VectorXd& mu, const Eigen::VectorXd& weights, double mu_max, double s_high,
+                           double s_smooth) {
+  auto rayleigh = [&](double beta) {
+    double sum = 0;
+    for (Eigen::Index k = 0; k < mu.size(); ++k) sum += s_high * std::sqrt((mu_max + beta) / (mu[k] + beta)) * weights[k];
+    return sum;
+  };
+  // rayleigh falls from (nearly) s_high sqrt(mu_max / mu_min) to s_high as beta grows.
+  double lo = std::log(mu_max * 1e-12), hi = std::log(mu_max * 1e12);
+  for (int it = 0; it < 200 && hi - lo > 1e-10; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (rayleigh(std::exp(mid)) > s_smooth ? lo : hi) = mid;
+  }
+  return std::exp(0.5 * (lo + hi));
+}
 
 PetscMat fractional_compliance(Mat mass, Mat stiffness, int dim, double s_high, double s_smooth, int max_rows,
                                FractionalFit& fit) {
@@ -128,22 +153,8 @@ PetscMat fractional_compliance(Mat mass, Mat stiffness, int dim, double s_high, 
       (M_rows.rowwise().sum().array() / M_rows.cwiseAbs().rowwise().sum().cwiseMax(1e-300).array()).matrix();
   const Eigen::VectorXd w = T.transpose() * w_rows;
   const Eigen::VectorXd c = MV.transpose() * w;  // w = V c
-  const double wMw = w.dot(M * w);
+  fit.beta = fit_fractional_beta(mu, (c.array().square() / w.dot(M * w)).matrix(), fit.mu_max, s_high, s_smooth);
   auto g = [&](double m, double beta) { return s_high * std::sqrt((fit.mu_max + beta) / (m + beta)); };
-  auto rayleigh = [&](double beta) {
-    double sum = 0;
-    for (Eigen::Index k = 0; k < mu.size(); ++k) sum += g(mu[k], beta) * c[k] * c[k];
-    return sum / wMw;
-  };
-  // rayleigh falls from (nearly) s_high sqrt(mu_max / mu_min) to s_high as beta grows: bisect
-  // on log beta for rayleigh(beta) = s_smooth (ending at an end of the bracket if it lies
-  // outside).
-  double lo = std::log(fit.mu_max * 1e-12), hi = std::log(fit.mu_max * 1e12);
-  for (int it = 0; it < 200 && hi - lo > 1e-10; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    (rayleigh(std::exp(mid)) > s_smooth ? lo : hi) = mid;
-  }
-  fit.beta = std::exp(0.5 * (lo + hi));
   Eigen::VectorXd gk(mu.size());
   for (Eigen::Index k = 0; k < mu.size(); ++k) gk[k] = g(mu[k], fit.beta);
   const Eigen::MatrixXd TMV = T * MV;

@@ -26,6 +26,8 @@
 // caller uses the model's rational form (rational_fractional_schur.hpp) on one process, and
 // the scaled mass on several.
 
+#include <Eigen/Dense>
+
 #include "common/petsc.hpp"
 
 namespace stiction::solvers {
@@ -39,6 +41,18 @@ struct FractionalFit {
   int quadrature_nodes = 0;
   double quadrature_error = 0;
 };
+
+// One node's constrained directions, as columns: the eigenvectors of its diagonal block of
+// Pi M Pi whose eigenvalues exceed 1e-10 of the largest (all of R^dim at a sticking node,
+// the normal at a slipping one, none at an inactive one).
+Eigen::MatrixXd node_constrained_directions(const Eigen::MatrixXd& block);
+
+// The model's beta: the Rayleigh quotient of G on the smooth probe, sum_k weights_k g(mu_k),
+// equals s_smooth (weights: the probe's M-normalised spectral weights on the eigenvalues or
+// Ritz values mu, summing to 1), found by bisection on log beta (an end of the bracket
+// [mu_max 1e-12, mu_max 1e12] when s_smooth lies outside the quotient's range).
+double fit_fractional_beta(const Eigen::VectorXd& mu, const Eigen::VectorXd& weights, double mu_max, double s_high,
+                           double s_smooth);
 
 // G on the multiplier numbering of `mass` (zero outside the constrained rows), or an empty
 // handle when the fit fails (see FractionalFit).

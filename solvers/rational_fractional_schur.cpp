@@ -31,23 +31,17 @@ SparseMatrix to_eigen(Mat m) {
   return out;
 }
 
-// The constrained directions as the columns of T (Pi T = T, T^T T = I), node by node: the
-// range of each node's diagonal block of Pi M Pi, as the dense model takes them.
+// The constrained directions as the columns of T (Pi T = T, T^T T = I), as the dense model
+// takes them.
 SparseMatrix constrained_directions(const SparseMatrix& mass, int dim) {
-  const Eigen::Index n = mass.rows();
   std::vector<Eigen::Triplet<double>> entries;
-  Eigen::Index directions = 0;
-  for (Eigen::Index node = 0; node < n; node += dim) {
-    const Eigen::MatrixXd block = Eigen::MatrixXd(mass.block(node, node, dim, dim));
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(block);
-    const double largest = eig.eigenvalues().cwiseAbs().maxCoeff();
-    for (int k = 0; k < dim; ++k) {
-      if (!(eig.eigenvalues()[k] > 1e-10 * largest)) continue;
-      for (int c = 0; c < dim; ++c) entries.emplace_back(node + c, directions, eig.eigenvectors()(c, k));
-      ++directions;
-    }
+  Eigen::Index columns = 0;
+  for (Eigen::Index node = 0; node < mass.rows(); node += dim) {
+    const Eigen::MatrixXd directions = node_constrained_directions(Eigen::MatrixXd(mass.block(node, node, dim, dim)));
+    for (Eigen::Index k = 0; k < directions.cols(); ++k, ++columns)
+      for (int c = 0; c < dim; ++c) entries.emplace_back(node + c, columns, directions(c, k));
   }
-  SparseMatrix T(n, directions);
+  SparseMatrix T(mass.rows(), columns);
   T.setFromTriplets(entries.begin(), entries.end());
   return T;
 }
@@ -171,18 +165,7 @@ bool RationalFractionalCorrection::setup(Mat mass, Mat stiffness, Mat D, Mat sli
   fit.mu_max =
       std::max(lanczos(f->K, f->M, f->M_solver, rough, kLanczosSteps).values.maxCoeff(), smooth.values.maxCoeff());
   if (!(fit.mu_max > 0)) return false;
-  auto g = [&](double m, double beta) { return s_high * std::sqrt((fit.mu_max + beta) / (m + beta)); };
-  auto rayleigh = [&](double beta) {
-    double sum = 0;
-    for (Eigen::Index i = 0; i < smooth.values.size(); ++i) sum += g(smooth.values[i], beta) * smooth.weights[i];
-    return sum;
-  };
-  double lo = std::log(fit.mu_max * 1e-12), hi = std::log(fit.mu_max * 1e12);
-  for (int it = 0; it < 200 && hi - lo > 1e-10; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    (rayleigh(std::exp(mid)) > s_smooth ? lo : hi) = mid;
-  }
-  fit.beta = std::exp(0.5 * (lo + hi));
+  fit.beta = fit_fractional_beta(smooth.values, smooth.weights, fit.mu_max, s_high, s_smooth);
 
   // X^-1/2 over the spectrum [beta, mu_max + beta], with a margin above: the largest Ritz
   // value is a lower bound of mu_max.

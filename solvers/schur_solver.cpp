@@ -46,7 +46,7 @@ void SchurSolver::configure(const nonlinear::NewtonSystem& system) {
     contact_->setup(system.matrix, lambda->is, system.multiplier_surface, *inner);
     inner = contact_.get();
     name = "global Schur level (33) (factors: contact_fact) with " + std::string(pressure ? "MHP (11)" : "HP (10)") +
-           " for A^-1 and S~ = D + G (G: contact_schur, fractional or the mass (32)) by the ss_ solver";
+           " for A^-1 and S~ = D + G (G: contact_schur, fractional in its dense or rational form, or the mass (32)) by the ss_ solver";
   }
   use_as_shell(pc, *inner, name.c_str());
 }
