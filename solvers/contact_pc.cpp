@@ -72,6 +72,8 @@ PetscMat ContactPreconditioner::fractional_from_options(Mat mass, Mat stiffness,
   // The rational form: S~ solved through the scaled mass's S~ and a right-side correction.
   PetscReal tolerance = 1e-2;
   STICTION_PETSC(PetscOptionsGetReal(nullptr, prefix_.c_str(), "-contact_fractional_tol", &tolerance, &set));
+  if (!(tolerance > 0 && tolerance < 0.5))
+    throw Error(fmt::format("-{}contact_fractional_tol: {} is not in (0, 0.5)", prefix_, tolerance));
   if (!rational_) rational_ = std::make_unique<RationalFractionalCorrection>();
   rational_active_ = rational_->setup(mass, stiffness, D_, slip_coupling, static_cast<int>(dim), scale_,
                                       estimates_.diagonal, estimates_.smooth, tolerance, fit_);

@@ -117,6 +117,13 @@ Quadrature inverse_square_root(double x_low, double x_high, double tolerance) {
   return q;
 }
 
+// Whether a row of `rest` lies in a constrained direction (T^T rest != 0): the split of
+// S~ x = b needs S0 without such rows.
+bool has_constrained_row(const SparseMatrix& T, Mat rest) {
+  const SparseMatrix full = to_eigen(rest);
+  return SparseMatrix(T.transpose() * full).norm() > 1e-12 * std::max(1.0, full.norm());
+}
+
 }  // namespace
 
 struct RationalFractionalCorrection::Factors {
@@ -126,6 +133,25 @@ struct RationalFractionalCorrection::Factors {
   std::vector<double> weight;
   double beta = 0, C = 1, s = 1;
 };
+
+namespace {
+
+// mu_max (the largest Ritz value of two Lanczos runs: from the probe and from a rough
+// vector) and beta (fit_fractional_beta on the probe's Gauss quadrature), the dense model's
+// constants; false when the spectrum is zero.
+bool fit_constants(const RationalFractionalCorrection::Factors& f, const Eigen::VectorXd& probe, double s_high,
+                   double s_smooth, FractionalFit& fit) {
+  constexpr int kLanczosSteps = 40;
+  Eigen::VectorXd rough(probe.size());
+  for (Eigen::Index i = 0; i < rough.size(); ++i) rough[i] = std::sin(1.0 + 0.7 * static_cast<double>(i));
+  const Ritz smooth = lanczos(f.K, f.M, f.M_solver, probe, kLanczosSteps);
+  fit.mu_max = std::max(lanczos(f.K, f.M, f.M_solver, rough, kLanczosSteps).values.maxCoeff(), smooth.values.maxCoeff());
+  if (!(fit.mu_max > 0)) return false;
+  fit.beta = fit_fractional_beta(smooth.values, smooth.weights, fit.mu_max, s_high, s_smooth);
+  return true;
+}
+
+}  // namespace
 
 RationalFractionalCorrection::RationalFractionalCorrection() = default;
 RationalFractionalCorrection::~RationalFractionalCorrection() = default;
@@ -143,29 +169,17 @@ bool RationalFractionalCorrection::setup(Mat mass, Mat stiffness, Mat D, Mat sli
   f->T = constrained_directions(full_mass, dim);
   fit.rows = static_cast<int>(f->T.cols());
   if (f->T.cols() < 2) return false;
-  for (Mat rest : {D, slip_coupling}) {  // the split of S~ x = b needs T^T S0 = 0
-    const SparseMatrix full_rest = to_eigen(rest);
-    if (SparseMatrix(f->T.transpose() * full_rest).norm() > 1e-12 * std::max(1.0, full_rest.norm())) return false;
-  }
+  if (has_constrained_row(f->T, D) || has_constrained_row(f->T, slip_coupling)) return false;
   f->M = f->T.transpose() * full_mass * f->T;
   f->K = f->T.transpose() * to_eigen(stiffness) * f->T;
   f->M_solver.compute(f->M);
   if (f->M_solver.info() != Eigen::Success) return false;
-
-  // The spectrum's ends and the smooth probe's quadrature (the dense model's fit).
-  constexpr int kLanczosSteps = 40;
-  Eigen::VectorXd rough(f->T.cols());
-  for (Eigen::Index i = 0; i < rough.size(); ++i) rough[i] = std::sin(1.0 + 0.7 * static_cast<double>(i));
   // The smooth probe of the body-end estimate, w_i = (M 1)_i / sum_j |M_ij| on the rows of
   // Pi M Pi, in the constrained directions.
   const Eigen::VectorXd ones = Eigen::VectorXd::Ones(full_mass.cols());
   const Eigen::VectorXd w_rows =
       ((full_mass * ones).array() / (full_mass.cwiseAbs() * ones).array().max(1e-300)).matrix();
-  const Ritz smooth = lanczos(f->K, f->M, f->M_solver, f->T.transpose() * w_rows, kLanczosSteps);
-  fit.mu_max =
-      std::max(lanczos(f->K, f->M, f->M_solver, rough, kLanczosSteps).values.maxCoeff(), smooth.values.maxCoeff());
-  if (!(fit.mu_max > 0)) return false;
-  fit.beta = fit_fractional_beta(smooth.values, smooth.weights, fit.mu_max, s_high, s_smooth);
+  if (!fit_constants(*f, f->T.transpose() * w_rows, s_high, s_smooth, fit)) return false;
 
   // X^-1/2 over the spectrum [beta, mu_max + beta], with a margin above: the largest Ritz
   // value is a lower bound of mu_max.

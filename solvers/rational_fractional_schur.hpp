@@ -49,8 +49,9 @@ public:
   // out = b - T T^T b + s T M G^-1 T^T b (out may be b).
   void correct(Vec b, Vec out) const;
 
+  struct Factors;  // the directions, the reduced surface matrices and their factorisations
+
 private:
-  struct Factors;
   std::unique_ptr<Factors> factors_;
 };
 

@@ -151,6 +151,22 @@ TEST_F(StictionCli, UnusedPetscOptionIsReported) {
                {"-lu_mumps_no_such_option", "not used"});
 }
 
+// The contact level's own option values (solvers/contact_pc.hpp) are checked when it is set
+// up: a value it does not know ends the run with one message naming the option.
+TEST_F(StictionCli, BadContactSchurOptionValueNamesTheOption) {
+  const std::vector<std::string> schur_amg = {"--solver", "schur-amg", "--no-vtu"};
+  auto with = [&](std::initializer_list<std::string> option) {
+    std::vector<std::string> args = schur_amg;
+    args.insert(args.end(), option);
+    return solve("hertz-cylinder-2d", args);
+  };
+  expect_error(with({"-schur_amg_contact_fractional_form", "sparse"}), 2,
+               {"-schur_amg_contact_fractional_form", "'sparse'", "auto, dense or rational"});
+  expect_error(with({"-schur_amg_contact_fractional_form", "rational", "-schur_amg_contact_fractional_tol", "0"}), 2,
+               {"-schur_amg_contact_fractional_tol", "not in (0, 0.5)"});
+  expect_error(with({"-schur_amg_contact_schur", "exact"}), 2, {"-schur_amg_contact_schur", "'exact'"});
+}
+
 TEST_F(StictionCli, UnknownBoundaryListsTheBodysBoundaries) {
   const auto scene = SceneVariant().replace("\"xmin\"", "\"nosuch\"");
   expect_error(solve_variant(scene, "unknown-boundary.toml"), 2,
