@@ -36,10 +36,10 @@ struct FractionalFit {
   bool fitted = false;  // false: s_smooth <= s_high, or too many rows; G was not built
   double beta = 0, mu_max = 0;
   int rows = 0;  // constrained directions (the model's size)
-  // The rational form (rational_fractional_schur.hpp): its quadrature nodes and the largest
-  // relative error of its g over the spectrum; 0 for the dense form.
-  int quadrature_nodes = 0;
-  double quadrature_error = 0;
+  // The rational form (rational_fractional_schur.hpp): its terms (one shifted factorisation
+  // each) and the largest relative error of its X^-1/2 over the spectrum; 0 for the dense form.
+  int rational_terms = 0;
+  double rational_error = 0;
 };
 
 // One node's constrained directions, as columns: the eigenvectors of its diagonal block of

@@ -4,10 +4,10 @@
 #include <Eigen/Sparse>
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <vector>
 
 #include "common/error.hpp"
+#include "zolotarev.hpp"
 
 namespace stiction::solvers {
 namespace {
@@ -83,40 +83,6 @@ Ritz lanczos(const SparseMatrix& K, const SparseMatrix& M, const Eigen::Simplici
   return {eig.eigenvalues().cwiseMax(0.0), eig.eigenvectors().row(0).transpose().array().square().matrix()};
 }
 
-// x^-1/2 ~ sum_k weight_k / (x + shift_k) on [x_low, x_high] (trapezoidal rule in y of
-// (2/pi) int e^y / (x + e^2y) dy), truncated and stepped from the error estimates below; the
-// step shrinks until the error, checked on a grid, is below the tolerance.
-struct Quadrature {
-  std::vector<double> weight, shift;
-  double error = 0;
-};
-
-Quadrature inverse_square_root(double x_low, double x_high, double tolerance) {
-  // Each tail and the discretisation error (about 2 exp(-pi^2 / step): the integrand's poles
-  // lie at Im y = pi / 2) get a quarter of the tolerance.
-  const double tail = std::log(8.0 / (std::numbers::pi * tolerance));
-  double step = std::numbers::pi * std::numbers::pi / std::log(8.0 / tolerance);
-  const double y_low = 0.5 * std::log(x_low) - tail, y_high = 0.5 * std::log(x_high) + tail;
-  Quadrature q;
-  for (int attempt = 0; attempt < 8; ++attempt, step *= 0.8) {
-    q = {};
-    const int nodes = static_cast<int>(std::ceil((y_high - y_low) / step)) + 1;
-    for (int k = 0; k < nodes; ++k) {
-      const double y = y_low + k * step;
-      q.weight.push_back(2.0 / std::numbers::pi * step * std::exp(y));
-      q.shift.push_back(std::exp(2 * y));
-    }
-    for (int i = 0; i <= 400; ++i) {
-      const double x = x_low * std::pow(x_high / x_low, i / 400.0);
-      double sum = 0;
-      for (size_t k = 0; k < q.weight.size(); ++k) sum += q.weight[k] / (x + q.shift[k]);
-      q.error = std::max(q.error, std::abs(sum * std::sqrt(x) - 1));
-    }
-    if (q.error <= tolerance) break;
-  }
-  return q;
-}
-
 // Whether a row of `rest` lies in a constrained direction (T^T rest != 0): the split of
 // S~ x = b needs S0 without such rows.
 bool has_constrained_row(const SparseMatrix& T, Mat rest) {
@@ -131,7 +97,7 @@ struct RationalFractionalCorrection::Factors {
   std::vector<std::unique_ptr<Eigen::SimplicialLDLT<SparseMatrix>>> shifted;  // K + sigma_k M
   Eigen::SimplicialLDLT<SparseMatrix> M_solver;
   std::vector<double> weight;
-  double beta = 0, C = 1, s = 1;
+  double constant = 0, beta = 0, C = 1, s = 1;
 };
 
 namespace {
@@ -183,18 +149,20 @@ bool RationalFractionalCorrection::setup(Mat mass, Mat stiffness, Mat D, Mat sli
 
   // X^-1/2 over the spectrum [beta, mu_max + beta], with a margin above: the largest Ritz
   // value is a lower bound of mu_max.
-  const Quadrature q = inverse_square_root(fit.beta, 1.1 * fit.mu_max + fit.beta, tolerance);
+  const InverseSquareRootApproximation q =
+      zolotarev_inverse_square_root(fit.beta, 1.1 * fit.mu_max + fit.beta, tolerance);
   for (size_t k = 0; k < q.weight.size(); ++k) {
     const SparseMatrix shifted = f->K + (fit.beta + q.shift[k]) * f->M;
     f->shifted.push_back(std::make_unique<Eigen::SimplicialLDLT<SparseMatrix>>(shifted));
     if (f->shifted.back()->info() != Eigen::Success) return false;
   }
   f->weight = q.weight;
+  f->constant = q.constant;
   f->beta = fit.beta;
   f->C = s_high * std::sqrt(fit.mu_max + fit.beta);
   f->s = s;
-  fit.quadrature_nodes = static_cast<int>(q.weight.size());
-  fit.quadrature_error = q.error;
+  fit.rational_terms = static_cast<int>(q.weight.size());
+  fit.rational_error = q.error;
   fit.fitted = true;
   factors_ = std::move(f);
   return true;
@@ -208,8 +176,8 @@ void RationalFractionalCorrection::correct(Vec b, Vec out) const {
   STICTION_PETSC(VecGetArrayRead(b, &b_array));
   const Eigen::VectorXd r = f.T.transpose() * Eigen::Map<const Eigen::VectorXd>(b_array, n);
   STICTION_PETSC(VecRestoreArrayRead(b, &b_array));
-  // a = G^-1 r = C^-1 M^-1 (K + beta M) sum_k w_k (K + sigma_k M)^-1 r
-  Eigen::VectorXd y = Eigen::VectorXd::Zero(r.size());
+  // a = G^-1 r = C^-1 M^-1 (K + beta M) (w_0 M^-1 + sum_k w_k (K + sigma_k M)^-1) r
+  Eigen::VectorXd y = f.constant * f.M_solver.solve(r);
   for (size_t k = 0; k < f.shifted.size(); ++k) y += f.weight[k] * f.shifted[k]->solve(r);
   const Eigen::VectorXd a = f.M_solver.solve(f.K * y + f.beta * (f.M * y)) / f.C;
   const Eigen::VectorXd change = f.T * (f.s * (f.M * a) - r);

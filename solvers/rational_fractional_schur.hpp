@@ -8,12 +8,12 @@
 // the dense model's g(mu) = s_high sqrt((mu_max + beta) / (mu + beta)). So
 //
 //   G^-1 = C^-1 X^1/2 M^-1 = C^-1 M^-1 (K + beta M) X^-1/2 M^-1,
-//   X^-1/2 M^-1 ~ sum_k w_k (K + sigma_k M)^-1,   sigma_k = beta + tau_k,
+//   X^-1/2 M^-1 ~ w_0 M^-1 + sum_k w_k (K + sigma_k M)^-1,   sigma_k = beta + tau_k,
 //
-// from x^-1/2 = (2/pi) int_R e^y / (x + e^2y) dy and the trapezoidal rule in y (nodes y_k,
-// w_k = (2/pi) h e^y_k, tau_k = e^2y_k; exponentially accurate for this analytic integrand),
-// with the nodes chosen for a relative error below `tolerance` over the spectrum (checked on
-// a grid and reported). Each K + sigma_k M is a sparse SPD surface matrix, factored once.
+// from Zolotarev's best relative approximation x^-1/2 ~ w_0 + sum_k w_k / (x + tau_k) over
+// the spectrum of X (zolotarev.hpp), of the smallest degree whose error is below
+// `tolerance` (4 to 6 terms for 1e-2 on spectra spanning 1e4 to 1e8). Each K + sigma_k M is
+// a sparse SPD surface matrix, factored once per set-up.
 //
 // S~ = S0 + T G T^T, where S0 (D and the slip coupling) has no constrained row (T^T S0 = 0:
 // a constrained direction's equation involves the displacement only). Then S~ x = b splits:

@@ -76,8 +76,8 @@ void SchurSolver::collect_setup_figures(std::map<std::string, double>& extra) co
       extra["contact_fractional_beta"] = fit.beta;
       extra["contact_fractional_mu_max"] = fit.mu_max;
       extra["contact_fractional_rows"] = fit.rows;
-      extra["contact_fractional_nodes"] = fit.quadrature_nodes;  // 0: the dense form
-      if (fit.quadrature_nodes > 0) extra["contact_fractional_error"] = fit.quadrature_error;
+      extra["contact_fractional_nodes"] = fit.rational_terms;  // 0: the dense form
+      if (fit.rational_terms > 0) extra["contact_fractional_error"] = fit.rational_error;
     }
   }
 }

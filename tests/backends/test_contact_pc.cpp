@@ -171,8 +171,9 @@ TEST(ContactPreconditioner, FractionalModelFollowsTheSchurComplementBetterThanTh
 // The rational form of the fractional model (rational_fractional_schur.hpp) against its
 // dense form on the same Newton system: the same fit (the Lanczos runs span the whole small
 // spectrum, so mu_max agrees to round-off and beta to the Gauss quadrature's accuracy), and
-// x = S~_rational^-1 b solves the dense S~ x = b to within a few times the quadrature
-// tolerance, where the scaled mass, the rational form's starting point, misses by far more.
+// x = S~_rational^-1 b solves the dense S~ x = b to within a few times the rational
+// approximation's tolerance, where the scaled mass, the rational form's starting point,
+// misses by far more.
 // On cattaneo-mindlin-2d (sticking, slipping and inactive nodes: S~ has D and slip-coupling
 // rows beside G) and on hertz-cylinder-2d (a curved zone).
 void expect_rational_form_solves_the_dense_model(StepSystem& step, const std::string& name) {
@@ -199,9 +200,9 @@ void expect_rational_form_solves_the_dense_model(StepSystem& step, const std::st
   const solvers::FractionalFit &dense = cps[0]->fractional_fit(), &rational = cps[1]->fractional_fit();
   ASSERT_TRUE(dense.fitted);
   ASSERT_TRUE(rational.fitted);
-  EXPECT_EQ(dense.quadrature_nodes, 0);
-  EXPECT_GT(rational.quadrature_nodes, 0);
-  EXPECT_LE(rational.quadrature_error, tolerance);
+  EXPECT_EQ(dense.rational_terms, 0);
+  EXPECT_GT(rational.rational_terms, 0);
+  EXPECT_LE(rational.rational_error, tolerance);
   EXPECT_EQ(rational.rows, dense.rows);
   EXPECT_NEAR(rational.mu_max, dense.mu_max, 1e-8 * dense.mu_max);
   EXPECT_NEAR(rational.beta, dense.beta, 1e-3 * dense.beta);
@@ -230,9 +231,9 @@ void expect_rational_form_solves_the_dense_model(StepSystem& step, const std::st
       worst[m] = std::max(worst[m], r_norm / b_norm);
     }
   }
-  std::printf("%s: %d directions, %d quadrature nodes (error %.2e); ||S_dense x - b|| / ||b||: rational %.2e, "
+  std::printf("%s: %d directions, %d rational terms (error %.2e); ||S_dense x - b|| / ||b||: rational %.2e, "
               "scaled mass %.2e\n",
-              name.c_str(), rational.rows, rational.quadrature_nodes, rational.quadrature_error, worst[0], worst[1]);
+              name.c_str(), rational.rows, rational.rational_terms, rational.rational_error, worst[0], worst[1]);
   EXPECT_LE(worst[0], 3 * tolerance);
   EXPECT_GE(worst[1], 10 * worst[0]);
 }
