@@ -11,7 +11,7 @@ set title 'block-strips-mr: time per linear solve'
 plot data index 0 using 1:2 with linespoints pt 7 lw 2 title 'fieldsplit-schur (p = 1.52)', \
      data index 1 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.72)', \
      data index 2 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.51)', \
-     data index 3 using 1:2 with linespoints pt 7 lw 2 title 'schur-amg (p = 1.26)', \
+     data index 3 using 1:2 with linespoints pt 7 lw 2 title 'schur-amg (p = 1.18)', \
      data index 4 using 1:2 with linespoints pt 7 lw 2 title 'schur-gamg (p = 1.25)'
 set output 'block-strips-mr-peak-memory.svg'
 set ylabel 'peak resident memory (MB)'
@@ -19,7 +19,7 @@ set title 'block-strips-mr: peak memory'
 plot data index 0 using 1:3 with linespoints pt 7 lw 2 title 'fieldsplit-schur (p = 0.91)', \
      data index 1 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.27)', \
      data index 2 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.18)', \
-     data index 3 using 1:3 with linespoints pt 7 lw 2 title 'schur-amg (p = 0.83)', \
+     data index 3 using 1:3 with linespoints pt 7 lw 2 title 'schur-amg (p = 0.82)', \
      data index 4 using 1:3 with linespoints pt 7 lw 2 title 'schur-gamg (p = 0.82)'
 unset logscale
 set xlabel 'mesh level'
