@@ -8,6 +8,7 @@
 //   Form Upper, (11):  y_p = S~^-1 r_p,  x_u = HP (r_u - Bp^T y_p),  x_p = y_p
 //   Form Full, (8):    y_u = HP r_u,  x_p = S~^-1 (r_p - Bp y_u),  x_u = HP (r_u - Bp^T x_p)
 // With exact inner solves (HP exact, S~ = S_p) Full is the exact inverse (tests/backends).
+// -<prefix>mhp_fact upper | full chooses the form at setup (default: set_form's, Upper).
 // The displacement and pressure unknowns are given as index sets (on several processes
 // neither is a contiguous range); other unknowns of A (contact multipliers) are left alone.
 #include <string>

@@ -16,16 +16,19 @@
 namespace stiction::solvers {
 namespace {
 
-int iterations_with_exact_blocks(SchurForm mixed_form, double* residual) {
+// The form set by set_form, or (by_option) by -<prefix>mhp_fact.
+int iterations_with_exact_blocks(SchurForm mixed_form, double* residual, bool by_option = false) {
   test::StepSystem s("cook-membrane-2d");
   const auto& sys = s.system();
   EXPECT_NE(sys.field("p"), nullptr);
-  const char* prefix = mixed_form == SchurForm::Full ? "mhp_full_" : "mhp_upper_";
+  const bool full = mixed_form == SchurForm::Full;
+  const std::string prefix = std::string(by_option ? "mhp_option_" : "mhp_") + (full ? "full_" : "upper_");
   test::set_options(prefix, {{"pp_ksp_type", "preonly"}, {"pp_pc_type", "lu"}});
+  if (by_option) test::set_options(prefix, {{"mhp_fact", full ? "full" : "upper"}});
   test::ExactHierarchical exact(sys, prefix);  // HP is the exact A^-1
 
   MixedPreconditioner mhp(PETSC_COMM_WORLD, prefix, exact.hp);
-  mhp.set_form(mixed_form);
+  if (!by_option) mhp.set_form(mixed_form);
   mhp.setup(sys.matrix, union_of_fields(sys, {"u_l", "u_q"}), sys.field("p")->is, sys.pressure_mass,
             sys.mixed_shear_modulus, sys.mixed_bulk_modulus);
   // Exact S_p = C - Bp A^-1 Bp^T with A the whole displacement block.
@@ -56,6 +59,29 @@ TEST(MixedPreconditioner, UpperFormWithExactBlocksNeedsTwoIterations) {
   double residual;
   EXPECT_LE(iterations_with_exact_blocks(SchurForm::Upper, &residual), 2);
   EXPECT_LT(residual, 1e-10);
+}
+
+// -<prefix>mhp_fact chooses the form: full gives the exact inverse as set_form does.
+TEST(MixedPreconditioner, FormChosenByOption) {
+  double residual;
+  EXPECT_EQ(iterations_with_exact_blocks(SchurForm::Full, &residual, true), 1);
+  EXPECT_LT(residual, 1e-10);
+  EXPECT_EQ(iterations_with_exact_blocks(SchurForm::Upper, &residual, true), 2);
+}
+
+TEST(MixedPreconditioner, BadFormOptionIsRefusedWithItsName) {
+  test::StepSystem s("cook-membrane-2d");
+  const auto& sys = s.system();
+  test::set_options("mhp_bad_", {{"mhp_fact", "lower"}});
+  test::ExactHierarchical exact(sys, "mhp_bad_");
+  MixedPreconditioner mhp(PETSC_COMM_WORLD, "mhp_bad_", exact.hp);
+  try {
+    mhp.setup(sys.matrix, union_of_fields(sys, {"u_l", "u_q"}), sys.field("p")->is, sys.pressure_mass,
+              sys.mixed_shear_modulus, sys.mixed_bulk_modulus);
+    ADD_FAILURE() << "mhp_fact lower was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("-mhp_bad_mhp_fact"), std::string::npos) << e.what();
+  }
 }
 
 TEST(MixedPreconditioner, PaperSettingsConverge) {
