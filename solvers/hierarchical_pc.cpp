@@ -50,18 +50,6 @@ PetscErrorCode shell_apply(PC pc, Vec r, Vec x) {
   return 0;
 }
 
-// -<prefix>hp_fact lower | full, else `current` (set_form's, the paper's lower by default).
-SchurForm form_from_options(const std::string& prefix, SchurForm current) {
-  char value[16] = "";
-  PetscBool set = PETSC_FALSE;
-  STICTION_PETSC(PetscOptionsGetString(nullptr, prefix.c_str(), "-hp_fact", value, sizeof value, &set));
-  if (!set) return current;
-  const std::string v = value;
-  if (v == "lower") return SchurForm::Lower;
-  if (v == "full") return SchurForm::Full;
-  throw Error(fmt::format("-{}hp_fact: '{}' is neither lower nor full", prefix, v));
-}
-
 // A fresh inner solver under the options prefix <prefix><block>_.
 void create_block_solver(MPI_Comm comm, const std::string& prefix, const char* block, PetscKSP& ksp) {
   STICTION_PETSC(KSPCreate(comm, ksp.out()));
@@ -69,6 +57,19 @@ void create_block_solver(MPI_Comm comm, const std::string& prefix, const char* b
 }
 
 }  // namespace
+
+SchurForm schur_form_from_options(const std::string& prefix, const char* key, SchurFormChoice first,
+                                  SchurFormChoice second, SchurForm current) {
+  char value[16] = "";
+  PetscBool set = PETSC_FALSE;
+  STICTION_PETSC(PetscOptionsGetString(nullptr, prefix.c_str(), (std::string("-") + key).c_str(), value,
+                                       sizeof value, &set));
+  if (!set) return current;
+  const std::string v = value;
+  if (v == first.name) return first.form;
+  if (v == second.name) return second.form;
+  throw Error(fmt::format("-{}{}: '{}' is neither {} nor {}", prefix, key, v, first.name, second.name));
+}
 
 HierarchicalPreconditioner::HierarchicalPreconditioner(MPI_Comm comm, const std::string& prefix) : prefix_(prefix) {
   create_block_solver(comm, prefix, "ll", ksp_ll_);
@@ -80,7 +81,7 @@ void HierarchicalPreconditioner::setup(Mat A, IS linear, IS quadratic, MatNullSp
   STICTION_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(quadratic)));
   *is_l_.out() = linear;
   *is_q_.out() = quadratic;
-  form_ = form_from_options(prefix_, form_);
+  form_ = schur_form_from_options(prefix_, "hp_fact", {"lower", SchurForm::Lower}, {"full", SchurForm::Full}, form_);
   // The qq solver's options first: whether its preconditioner can work on a view of A_qq.
   STICTION_PETSC(KSPSetFromOptions(ksp_qq_));
   PC pc_qq;

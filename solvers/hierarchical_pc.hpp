@@ -29,6 +29,15 @@ namespace stiction::solvers {
 
 enum class SchurForm { Lower, Upper, Full };
 
+// The form named by the option -<prefix><key> (one of two values), else `current`; any other
+// value is an Error naming the option.
+struct SchurFormChoice {
+  const char* name;
+  SchurForm form;
+};
+SchurForm schur_form_from_options(const std::string& prefix, const char* key, SchurFormChoice first,
+                                  SchurFormChoice second, SchurForm current);
+
 // A preconditioner applied through a PETSc PCSHELL (HP, MHP, and the contact level).
 class ShellPreconditioner {
 public:

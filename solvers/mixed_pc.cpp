@@ -1,7 +1,5 @@
 #include "mixed_pc.hpp"
 
-#include <fmt/format.h>
-
 #include "block_view.hpp"
 #include "solver_figures.hpp"
 
@@ -16,22 +14,6 @@ MixedPreconditioner::MixedPreconditioner(MPI_Comm comm, const std::string& prefi
   STICTION_PETSC(KSPSetOptionsPrefix(ksp_pp_, (prefix + "pp_").c_str()));
 }
 
-namespace {
-
-// -<prefix>mhp_fact upper | full, else `current` (set_form's, the paper's upper (11) by default).
-SchurForm mixed_form_from_options(const std::string& prefix, SchurForm current) {
-  char value[16] = "";
-  PetscBool set = PETSC_FALSE;
-  STICTION_PETSC(PetscOptionsGetString(nullptr, prefix.c_str(), "-mhp_fact", value, sizeof value, &set));
-  if (!set) return current;
-  const std::string v = value;
-  if (v == "upper") return SchurForm::Upper;
-  if (v == "full") return SchurForm::Full;
-  throw Error(fmt::format("-{}mhp_fact: '{}' is neither upper nor full", prefix, v));
-}
-
-}  // namespace
-
 double MixedPreconditioner::pressure_schur_scale(double shear_modulus, double bulk_modulus) {
   return -(1 / shear_modulus + 1 / bulk_modulus);
 }
@@ -41,7 +23,7 @@ void MixedPreconditioner::setup(Mat A, IS displacement, IS pressure, Mat pressur
   if (!pressure_mass || !(shear_modulus > 0) || !(bulk_modulus > 0))
     throw Error("MHP (11) needs the pressure mass matrix and the moduli of a mixed law", ErrorKind::Internal);
   const double alpha = pressure_schur_scale(shear_modulus, bulk_modulus);
-  form_ = mixed_form_from_options(prefix_, form_);
+  form_ = schur_form_from_options(prefix_, "mhp_fact", {"upper", SchurForm::Upper}, {"full", SchurForm::Full}, form_);
   if (!is_u_) {
     STICTION_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(pressure)));
     *is_p_.out() = pressure;
