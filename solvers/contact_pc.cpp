@@ -8,7 +8,6 @@
 #include "common/error.hpp"
 #include "field_sets.hpp"
 #include "multiplier_schur_parts.hpp"
-#include "pivoting_fallback.hpp"
 #include "rational_fractional_schur.hpp"
 #include "solver_figures.hpp"
 
@@ -197,7 +196,7 @@ void ContactPreconditioner::setup(Mat M, IS multipliers, const nonlinear::Multip
   STICTION_PETSC(MatAssemblyEnd(S_, MAT_FINAL_ASSEMBLY));
   STICTION_PETSC(KSPSetOperators(ksp_ss_, S_, S_));
   STICTION_PETSC(KSPSetFromOptions(ksp_ss_));
-  set_up_with_pivoting_fallback(ksp_ss_);
+  STICTION_PETSC(KSPSetUp(ksp_ss_));
   STICTION_PETSC(MatCreateVecs(M, work_.out(), work2_.out()));
   STICTION_PETSC(MatCreateVecs(D_, work_l_.out(), nullptr));
   STICTION_PETSC(MatCreateVecs(B1_, nullptr, work_a_.out()));
@@ -217,7 +216,7 @@ void ContactPreconditioner::release() {
 void ContactPreconditioner::set_schur_operator(Mat S) {
   rational_active_ = false;
   STICTION_PETSC(KSPSetOperators(ksp_ss_, S, S));
-  set_up_with_pivoting_fallback(ksp_ss_);
+  STICTION_PETSC(KSPSetUp(ksp_ss_));
 }
 
 Mat ContactPreconditioner::block(int row, int col) const {

@@ -2,7 +2,6 @@
 
 #include "common/error.hpp"
 #include "field_sets.hpp"
-#include "pivoting_fallback.hpp"
 #include "solver_figures.hpp"
 #include "stdout_capture.hpp"
 
@@ -71,8 +70,6 @@ void SchurSolver::collect_setup_figures(std::map<std::string, double>& extra) co
     extra["contact_schur_scale"] = contact_->scale();
     extra["contact_scale_diagonal"] = contact_->scale_estimates().diagonal;
     extra["contact_scale_smooth"] = contact_->scale_estimates().smooth;
-    // 1 when S~ is factored by MUMPS: on several processes, or after PETSc's LU met a zero pivot.
-    extra["contact_ss_mumps"] = factored_by_mumps(contact_->schur_solver()) ? 1 : 0;
     const FractionalFit& fit = contact_->fractional_fit();
     extra["contact_schur_fractional"] = fit.fitted ? 1 : 0;  // 0: the scaled mass (32)
     if (fit.fitted) {
