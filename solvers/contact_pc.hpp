@@ -60,8 +60,8 @@
 // prediction of B2 P_A^-1 r_a in the upper form's multiplier solve (5-12% fewer iterations
 // on the 2D scenes, none on hertz-spheres-3d at level 2; reports/README,
 // contact-levels-0-2-pair-removed).
-// S~ is solved by its own KSP (<prefix>ss_, a direct solve by default: it lives on the slave
-// surface only). With exact inner solves and S~ = S_g the full form is the exact inverse
+// S~ is solved by its own KSP (<prefix>ss_, by default MUMPS's LU: it lives on the slave
+// surface only, and its rows need pivoting, schur-levels-common.opts). With exact inner solves and S~ = S_g the full form is the exact inverse
 // (tests/backends).
 #include <memory>
 #include <string>

@@ -12,13 +12,11 @@ SchurSolver::SchurSolver(const std::string& name, MPI_Comm comm)
   MPI_Comm_size(comm, &processes_);
   // PETSc's SOR on a distributed matrix sweeps each process's rows only (MatSOR_MPIAIJ has
   // no global sweep): the qq_ and pp_ sweeps become the process-local symmetric ones, which
-  // PCSetFromOptions applies after -qq_pc_sor_symmetric. PETSc's own LU is sequential: the
-  // contact level's S~ is factored by MUMPS instead.
+  // PCSetFromOptions applies after -qq_pc_sor_symmetric.
   if (processes_ > 1) {
     const std::string prefix = "-" + options_prefix(name);
     for (const char* key : {"qq_pc_sor_local_symmetric", "pp_pc_sor_local_symmetric"})
       STICTION_PETSC(PetscOptionsSetValue(nullptr, (prefix + key).c_str(), nullptr));
-    STICTION_PETSC(PetscOptionsSetValue(nullptr, (prefix + "ss_pc_factor_mat_solver_type").c_str(), "mumps"));
   }
 }
 

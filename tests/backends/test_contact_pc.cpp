@@ -11,6 +11,7 @@
 
 #include "builtin_scenes.hpp"
 #include "contact_pc.hpp"
+#include "ksp_solver.hpp"
 #include "registry.hpp"
 #include "multiplier_schur_parts.hpp"
 #include "support/schur_helpers.hpp"
@@ -277,4 +278,58 @@ TEST(ContactPreconditioner, BlockWithStripsUsesTheRationalFractionalForm) {
 }
 
 }  // namespace
+}  // namespace stiction::test
+
+namespace stiction::test {
+namespace {
+
+// [[0 1 0] [1 0 0] [0 0 4]]: nonsingular, and its 2x2 block has zero diagonals in either
+// order, like a constrained node's normal row in S~ (no diagonal entry of its own in D).
+PetscMat zero_diagonal_matrix() {
+  PetscMat A;
+  STICTION_PETSC(MatCreateSeqAIJ(PETSC_COMM_SELF, 3, 3, 2, nullptr, A.out()));
+  for (PetscInt i = 0; i < 2; ++i) STICTION_PETSC(MatSetValue(A, i, i, 0.0, INSERT_VALUES));
+  STICTION_PETSC(MatSetValue(A, 0, 1, 1.0, INSERT_VALUES));
+  STICTION_PETSC(MatSetValue(A, 1, 0, 1.0, INSERT_VALUES));
+  STICTION_PETSC(MatSetValue(A, 2, 2, 4.0, INSERT_VALUES));
+  STICTION_PETSC(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+  STICTION_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  return A;
+}
+
+// The largest error of the solve of A x = A (1, 2, 3) by a preonly KSP with this prefix.
+double direct_solve_error(const std::string& prefix, Mat A) {
+  PetscKSP ksp;
+  STICTION_PETSC(KSPCreate(PETSC_COMM_SELF, ksp.out()));
+  STICTION_PETSC(KSPSetOptionsPrefix(ksp, prefix.c_str()));
+  STICTION_PETSC(KSPSetOperators(ksp, A, A));
+  STICTION_PETSC(KSPSetFromOptions(ksp));
+  PetscVec x, b, exact;
+  STICTION_PETSC(MatCreateVecs(A, x.out(), b.out()));
+  STICTION_PETSC(VecDuplicate(x, exact.out()));
+  for (PetscInt i = 0; i < 3; ++i) STICTION_PETSC(VecSetValue(exact, i, i + 1.0, INSERT_VALUES));
+  STICTION_PETSC(VecAssemblyBegin(exact));
+  STICTION_PETSC(VecAssemblyEnd(exact));
+  STICTION_PETSC(MatMult(A, exact, b));
+  STICTION_PETSC(KSPSolve(ksp, b, x));
+  STICTION_PETSC(VecAXPY(x, -1.0, exact));
+  PetscReal error;
+  STICTION_PETSC(VecNorm(x, NORM_INFINITY, &error));
+  return error;
+}
+
+}  // namespace
+
+// The Schur backends' contact level (the ss_ solver of S~) factors with pivoting: PETSc's
+// own LU, which does not pivot, fails on a matrix with zero diagonal entries.
+TEST(ContactPreconditioner, SchurBackendsFactorTheContactLevelWithPivoting) {
+  const PetscMat A = zero_diagonal_matrix();
+  set_options("test_pivot_", {{"ksp_type", "preonly"}, {"pc_type", "lu"}, {"pc_factor_mat_solver_type", "petsc"}});
+  ASSERT_FALSE(std::isfinite(direct_solve_error("test_pivot_", A)));  // the case needs pivoting
+  for (const char* backend : {"schur-amg", "schur-lu", "schur-gamg"}) {
+    const auto solver = solvers::create_solver(backend, PETSC_COMM_WORLD);  // its options into the database
+    EXPECT_LT(direct_solve_error(solvers::options_prefix(backend) + "ss_", A), 1e-14) << backend;
+  }
+}
+
 }  // namespace stiction::test
