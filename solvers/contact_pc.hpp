@@ -61,8 +61,8 @@
 // on the 2D scenes, none on hertz-spheres-3d at level 2; reports/README,
 // contact-levels-0-2-pair-removed).
 // S~ is solved by its own KSP (<prefix>ss_, by default MUMPS's LU: it lives on the slave
-// surface only, and its rows need pivoting, schur-levels-common.opts). With exact inner solves and S~ = S_g the full form is the exact inverse
-// (tests/backends).
+// surface only, and its rows need pivoting, schur-levels-common.opts). With exact inner
+// solves and S~ = S_g the full form is the exact inverse (tests/backends).
 #include <memory>
 #include <string>
 
