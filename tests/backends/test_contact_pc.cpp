@@ -277,12 +277,6 @@ TEST(ContactPreconditioner, BlockWithStripsUsesTheRationalFractionalForm) {
   EXPECT_LT(rational_krylov, mass_krylov);
 }
 
-}  // namespace
-}  // namespace stiction::test
-
-namespace stiction::test {
-namespace {
-
 // [[0 1 0] [1 0 0] [0 0 4]]: nonsingular, and its 2x2 block has zero diagonals in either
 // order, like a constrained node's normal row in S~ (no diagonal entry of its own in D).
 PetscMat zero_diagonal_matrix() {
@@ -318,8 +312,6 @@ double direct_solve_error(const std::string& prefix, Mat A) {
   return error;
 }
 
-}  // namespace
-
 // The Schur backends' contact level (the ss_ solver of S~) factors with pivoting: PETSc's
 // own LU, which does not pivot, fails on a matrix with zero diagonal entries.
 TEST(ContactPreconditioner, SchurBackendsFactorTheContactLevelWithPivoting) {
@@ -332,4 +324,5 @@ TEST(ContactPreconditioner, SchurBackendsFactorTheContactLevelWithPivoting) {
   }
 }
 
+}  // namespace
 }  // namespace stiction::test
