@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <limits>
 
 #include "common/error.hpp"
@@ -222,12 +223,20 @@ int ContactPair::update_states(double t, fem::StateView u, const double* lambda,
     NodeState next = next_state(state_[i], node_quantities(k.n, k.G, k.S, lam), settings_.friction_at(t), tol);
     if (!k.admissible) next = NodeState::Inactive;
     // Adaptive r_t (Sec. 4.4): consecutive tangential corrections pointing the same way mean
-    // r_t is too small (grow it), opposite ways mean it overshoots (shrink it).
+    // r_t is too small (grow it), opposite ways mean it overshoots (shrink it), but never
+    // below tangential_penalty_floor times its start (choice; the paper sets no bound). As
+    // r_t -> 0 the slip row lambda_t = mu lambda_n a^ holds for any direction of lambda_t
+    // (a -> lambda_t), so Newton loses the friction's direction: on block-strips level 1
+    // (schur-amg, load step 7 after a step 6 with gap_tolerance 1e-5), r_t of groove wall
+    // nodes fell by 20 at five updates in a row (to 3e-7 of its start), the cosine between
+    // lambda_t and the slip drifted from -1 to -0.46, and the contact residual swung between
+    // 1e-7 and 3e-4 with the states fixed (20 Newton iterations). The paper warns of it: too
+    // small, "the tangential multiplier ... will never be perfectly aligned".
     const Vec3 dt = dlam - k.n * k.n.dot(dlam), last = last_dlambda_t_[i];
     if (adapt_r_t && state_[i] == NodeState::Slip && next == NodeState::Slip && dt.norm() > 0 && last.norm() > 0) {
       const double cosine = dt.dot(last) / (dt.norm() * last.norm());
       if (cosine > 0.8) r_t_[i] *= 20;
-      if (cosine < 0.3) r_t_[i] /= 20;
+      if (cosine < 0.3) r_t_[i] = std::max(r_t_[i] / 20, settings_.tangential_penalty_floor * initial_r_t(i));
     }
     last_dlambda_t_[i] = dt;
     if (next != state_[i]) ++changes;

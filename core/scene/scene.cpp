@@ -129,6 +129,9 @@ struct Schemas {
                 {"force_tolerance", VT::Float, "state machine: tension tolerance on lambda_n, relative to E", false,
                  1e-9},
                 {"tangential_penalty", VT::Float, "initial r_t of (19), in units of E / (h m_i)", false, 1.0},
+                {"tangential_penalty_floor", VT::Float,
+                 "smallest r_t the adaptation of Sec. 4.4 may reach, relative to the initial r_t (0: no floor)", false,
+                 contact::ContactSettings{}.tangential_penalty_floor},
                 {"normal_linearisation", VT::String,
                  "'surface': the nodal normals' variation in the Jacobian: always, never (the paper), or once the "
                  "states settled",
@@ -541,6 +544,7 @@ std::unique_ptr<nonlinear::MultiplierConstraint> make_contact(const Scene& s, co
   cs.gap_tolerance = get_float(t, S, "gap_tolerance");
   cs.force_tolerance = get_float(t, S, "force_tolerance");
   cs.tangential_penalty = get_float(t, S, "tangential_penalty");
+  cs.tangential_penalty_floor = get_float(t, S, "tangential_penalty_floor");
   cs.mass_weighted_rows = get_bool(t, S, "mass_weighted_rows");
   const std::string normals = get_string(t, S, "normal_linearisation");
   using NL = contact::ContactSettings::NormalLinearisation;
@@ -551,8 +555,11 @@ std::unique_ptr<nonlinear::MultiplierConstraint> make_contact(const Scene& s, co
                             what));
   cs.master_point = closest || s.mesh.dim == 2 ? contact::ContactSettings::MasterPoint::Closest
                                                : contact::ContactSettings::MasterPoint::NormalCrossing;
-  if (cs.friction < 0 || cs.gap_tolerance < 0 || cs.force_tolerance < 0 || !(cs.tangential_penalty > 0))
-    throw Error(fmt::format("{}: {}: friction and tolerances must be >= 0, tangential_penalty > 0", file, what));
+  if (cs.friction < 0 || cs.gap_tolerance < 0 || cs.force_tolerance < 0 || !(cs.tangential_penalty > 0) ||
+      !(cs.tangential_penalty_floor >= 0 && cs.tangential_penalty_floor <= 1))
+    throw Error(fmt::format("{}: {}: friction and tolerances must be >= 0, tangential_penalty > 0, "
+                            "tangential_penalty_floor in [0, 1]",
+                            file, what));
   // The slave body gives the stiffness scale.
   const auto it = std::find(s.body_names.begin(), s.body_names.end(), slave_body);
   cs.modulus = body_material[static_cast<size_t>(it - s.body_names.begin())]->reference_modulus();

@@ -483,6 +483,59 @@ TEST(RigidPlaneContact, TangentialPenaltyAdaptsOnlyWhileTheMultipliersMove) {
   EXPECT_GT(change, 1e-3 * size);
 }
 
+// The adaptive r_t of Sec. 4.4 falls by 20 at every correction that turns away from the last
+// one, but not below tangential_penalty_floor times its start (default 1): after nine turns
+// by 90 degrees, the slip rows of every node that kept slipping are those of the start;
+// with the floor at 0 they are not (r_t is then 20^-9 of its start).
+TEST(RigidPlaneContact, TangentialPenaltyFallsNoLowerThanItsFloor) {
+  const std::string no_floor = test::replaced(kBlockOnPlane, "friction = 0.4",
+                                              "friction = 0.4\ntangential_penalty_floor = 0.0");
+  auto scene = scene::build_scene(kBlockOnPlane, "block-on-plane", ".");
+  auto start_scene = scene::build_scene(kBlockOnPlane, "block-on-plane", ".");
+  auto unfloored_scene = scene::build_scene(no_floor, "block-on-plane-no-floor", ".");
+  auto& pair = dynamic_cast<RigidPlaneContact&>(*scene->contacts.at(0));
+  auto& at_start = dynamic_cast<RigidPlaneContact&>(*start_scene->contacts.at(0));
+  auto& unfloored = dynamic_cast<RigidPlaneContact&>(*unfloored_scene->contacts.at(0));
+  const int n_u = scene->space->n_dofs(), n_nodes = pair.slave().n_nodes();
+  std::vector<double> u0, u, lambda;
+  random_state(pair, n_u, 0.02, 2, u0, u, lambda);
+  // Tangential corrections of half the multiplier, alternately along two directions
+  // orthogonal to each other and to the plane's normal (cosine 0 < 0.3: r_t / 20).
+  const Vec3 n = Vec3(0.1, 0.0, 1.0).normalized(), e1 = n.cross(Vec3::UnitY()).normalized(), e2 = n.cross(e1);
+  auto ten_turns = [&](ContactPair& p) {
+    p.begin_increment(0.0, u0);
+    for (int k = 0; k < 10; ++k) {
+      std::vector<double> dl(lambda.size());
+      for (int i = 0; i < n_nodes; ++i) {
+        const Vec3 turn = 0.5 * Vec3(lambda[3 * i], lambda[3 * i + 1], lambda[3 * i + 2]).norm() * (k % 2 ? e2 : e1);
+        for (int c = 0; c < 3; ++c) dl[3 * i + c] = turn[c];
+      }
+      for (int i = 0; i < n_nodes; ++i) p.set_state(i, NodeState::Slip);
+      p.update_states(1, u, lambda.data(), dl.data());
+    }
+  };
+  ten_turns(pair);
+  ten_turns(unfloored);
+  std::vector<char> kept_slipping(n_nodes);
+  for (int i = 0; i < n_nodes; ++i) kept_slipping[i] = pair.state(i) == NodeState::Slip;
+  at_start.begin_increment(0.0, u0);
+  const std::vector<double> adapted = slip_rows(pair, n_u, u, lambda), start = slip_rows(at_start, n_u, u, lambda),
+                            without_floor = slip_rows(unfloored, n_u, u, lambda);
+  int compared = 0;
+  double unfloored_change = 0;
+  for (int i = 0; i < n_nodes; ++i) {
+    if (!kept_slipping[i]) continue;
+    ++compared;
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(adapted[3 * i + c], start[3 * i + c], 1e-12 * (1 + std::abs(start[3 * i + c])))
+          << "node " << i << " component " << c;
+      unfloored_change = std::max(unfloored_change, std::abs(without_floor[3 * i + c] - start[3 * i + c]));
+    }
+  }
+  EXPECT_GE(compared, n_nodes / 3) << "too few nodes kept slipping for the comparison to mean much";
+  EXPECT_GT(unfloored_change, 1e-3) << "without the floor, r_t's fall should change the slip rows";
+}
+
 // A 3D slipping node at the start of an increment (g_t = 0) whose multiplier sits on the
 // Coulomb cone (|lambda_t| = mu lambda_n) has a multiplier block without the direction t2
 // orthogonal to n and lambda_t; the Schur approximation D + Pi M Pi is singular there
