@@ -32,7 +32,7 @@ struct ContactSettings {
   double gap_tolerance = 1e-9;     // relative to the slave surface's diameter
   double force_tolerance = 1e-9;   // relative to the modulus
   double tangential_penalty = 1;   // r_t at the start, in units of E / (h_i m_i)
-  double tangential_penalty_floor = 1;  // smallest r_t, relative to the start's (choice: contact_pair.cpp)
+  double tangential_penalty_floor = 1.0 / 20;  // smallest r_t, relative to the start's (choice: contact_pair.cpp)
   // How the Jacobian treats the variation of the nodal normals (a deformable master's
   // slave normals move with u; a rigid plane's do not, so its Jacobian is exact anyway):
   //   Exact    always linearised (exact Newton);

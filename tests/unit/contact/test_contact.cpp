@@ -484,17 +484,20 @@ TEST(RigidPlaneContact, TangentialPenaltyAdaptsOnlyWhileTheMultipliersMove) {
 }
 
 // The adaptive r_t of Sec. 4.4 falls by 20 at every correction that turns away from the last
-// one, but not below tangential_penalty_floor times its start (default 1): after nine turns
-// by 90 degrees, the slip rows of every node that kept slipping are those of the start;
-// with the floor at 0 they are not (r_t is then 20^-9 of its start).
+// one, but not below tangential_penalty_floor times its start (default 1/20): after nine
+// turns by 90 degrees, the slip rows of every node that kept slipping are those of a pair
+// started at the floor (tangential_penalty 1/20); with the floor at 0 they are not (r_t is
+// then 20^-9 of its start).
 TEST(RigidPlaneContact, TangentialPenaltyFallsNoLowerThanItsFloor) {
   const std::string no_floor = test::replaced(kBlockOnPlane, "friction = 0.4",
                                               "friction = 0.4\ntangential_penalty_floor = 0.0");
   auto scene = scene::build_scene(kBlockOnPlane, "block-on-plane", ".");
-  auto start_scene = scene::build_scene(kBlockOnPlane, "block-on-plane", ".");
+  auto floor_scene = scene::build_scene(
+      test::replaced(kBlockOnPlane, "friction = 0.4", "friction = 0.4\ntangential_penalty = 0.05"),
+      "block-on-plane-at-floor", ".");
   auto unfloored_scene = scene::build_scene(no_floor, "block-on-plane-no-floor", ".");
   auto& pair = dynamic_cast<RigidPlaneContact&>(*scene->contacts.at(0));
-  auto& at_start = dynamic_cast<RigidPlaneContact&>(*start_scene->contacts.at(0));
+  auto& at_floor = dynamic_cast<RigidPlaneContact&>(*floor_scene->contacts.at(0));
   auto& unfloored = dynamic_cast<RigidPlaneContact&>(*unfloored_scene->contacts.at(0));
   const int n_u = scene->space->n_dofs(), n_nodes = pair.slave().n_nodes();
   std::vector<double> u0, u, lambda;
@@ -518,8 +521,8 @@ TEST(RigidPlaneContact, TangentialPenaltyFallsNoLowerThanItsFloor) {
   ten_turns(unfloored);
   std::vector<char> kept_slipping(n_nodes);
   for (int i = 0; i < n_nodes; ++i) kept_slipping[i] = pair.state(i) == NodeState::Slip;
-  at_start.begin_increment(0.0, u0);
-  const std::vector<double> adapted = slip_rows(pair, n_u, u, lambda), start = slip_rows(at_start, n_u, u, lambda),
+  at_floor.begin_increment(0.0, u0);
+  const std::vector<double> adapted = slip_rows(pair, n_u, u, lambda), floor = slip_rows(at_floor, n_u, u, lambda),
                             without_floor = slip_rows(unfloored, n_u, u, lambda);
   int compared = 0;
   double unfloored_change = 0;
@@ -527,9 +530,9 @@ TEST(RigidPlaneContact, TangentialPenaltyFallsNoLowerThanItsFloor) {
     if (!kept_slipping[i]) continue;
     ++compared;
     for (int c = 0; c < 3; ++c) {
-      EXPECT_NEAR(adapted[3 * i + c], start[3 * i + c], 1e-12 * (1 + std::abs(start[3 * i + c])))
+      EXPECT_NEAR(adapted[3 * i + c], floor[3 * i + c], 1e-12 * (1 + std::abs(floor[3 * i + c])))
           << "node " << i << " component " << c;
-      unfloored_change = std::max(unfloored_change, std::abs(without_floor[3 * i + c] - start[3 * i + c]));
+      unfloored_change = std::max(unfloored_change, std::abs(without_floor[3 * i + c] - floor[3 * i + c]));
     }
   }
   EXPECT_GE(compared, n_nodes / 3) << "too few nodes kept slipping for the comparison to mean much";
