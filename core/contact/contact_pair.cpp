@@ -224,18 +224,13 @@ int ContactPair::update_states(double t, fem::StateView u, const double* lambda,
     if (!k.admissible) next = NodeState::Inactive;
     // Adaptive r_t (Sec. 4.4): consecutive tangential corrections pointing the same way mean
     // r_t is too small (grow it), opposite ways mean it overshoots (shrink it), but never
-    // below tangential_penalty_floor times its start (choice; the paper sets no bound). As
-    // r_t -> 0 the slip row lambda_t = mu lambda_n a^ holds for any direction of lambda_t
-    // (a -> lambda_t), so Newton loses the friction's direction: on block-strips level 1
-    // (schur-amg, load step 7 after a step 6 with gap_tolerance 1e-5), r_t of groove wall
-    // nodes fell by 20 at five updates in a row (to 3e-7 of its start), the cosine between
-    // lambda_t and the slip drifted from -1 to -0.46, and the contact residual swung between
-    // 1e-7 and 3e-4 with the states fixed (20 Newton iterations). The paper warns of it: too
-    // small, "the tangential multiplier ... will never be perfectly aligned". The floor, one
-    // of the paper's factors of 20 below the start, leaves r_t room to fall where the start
-    // is too stiff: level 0, lu-mumps, ironing-2d takes 71 Newton iterations with floors 0
-    // to 0.2 and 76 with 1; block-strips level 1 (schur-amg) load steps 6-8 take 24 with
-    // 1/20 or 1 against 29 without a floor.
+    // below tangential_penalty_floor times its start (choice; the paper sets no bound, but
+    // warns that too small an r_t never aligns lambda_t). As r_t -> 0 the slip row
+    // lambda_t = mu lambda_n a^ holds for any direction of lambda_t (a -> lambda_t): Newton
+    // loses the friction's direction and the contact residual swings with the states fixed
+    // (groove walls of block-strips). The default floor, one of the paper's factors of 20
+    // below the start, leaves r_t room to fall where the start is too stiff (ironing-2d).
+    // Measurements: reports/README.md, "The adaptive r_t's floor".
     const Vec3 dt = dlam - k.n * k.n.dot(dlam), last = last_dlambda_t_[i];
     if (adapt_r_t && state_[i] == NodeState::Slip && next == NodeState::Slip && dt.norm() > 0 && last.norm() > 0) {
       const double cosine = dt.dot(last) / (dt.norm() * last.norm());

@@ -49,6 +49,18 @@ TEST(Scene, KrylovRestartIsTheBackendsUnlessTheSceneSetsIt) {
   EXPECT_EQ(harness::open_scene("block-strips", 0, {})->newton.krylov_restart, 50);
 }
 
+// contact.tangential_penalty_floor: 1/20 unless the scene sets it; outside [0, 1] is bad input.
+TEST(Scene, TangentialPenaltyFloorIsValidated) {
+  const std::string text = harness::builtin_scenes().at("sliding-block-2d");
+  auto with_floor = [&](const std::string& value) {
+    return test::replaced(text, "[[contact]]\n", "[[contact]]\ntangential_penalty_floor = " + value + "\n");
+  };
+  EXPECT_EQ(error_of(with_floor("0.0")), "");
+  EXPECT_EQ(error_of(with_floor("1.0")), "");
+  for (const char* bad : {"-0.1", "1.5"})
+    EXPECT_NE(error_of(with_floor(bad)).find("tangential_penalty_floor in [0, 1]"), std::string::npos) << bad;
+}
+
 TEST(Scene, LevelRefines) {
   auto s = build_scene(kMinimal, "test.toml", ".", 2);
   EXPECT_EQ(s->mesh.n_cells(), 8 * 16);
