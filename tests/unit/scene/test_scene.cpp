@@ -49,7 +49,7 @@ TEST(Scene, KrylovRestartIsTheBackendsUnlessTheSceneSetsIt) {
   EXPECT_EQ(harness::open_scene("block-strips", 0, {})->newton.krylov_restart, 50);
 }
 
-// contact.tangential_penalty_floor: 1/20 unless the scene sets it; outside [0, 1] is bad input.
+// contact.tangential_penalty_floor: 0 and 1 are accepted; outside [0, 1] is bad input.
 TEST(Scene, TangentialPenaltyFloorIsValidated) {
   const std::string text = harness::builtin_scenes().at("sliding-block-2d");
   auto with_floor = [&](const std::string& value) {
