@@ -9,18 +9,18 @@ set output 'block-strips-time-per-solve.svg'
 set ylabel 's / linear solve (set-up + Krylov)'
 set title 'block-strips: time per linear solve'
 plot data index 0 using 1:2 with linespoints pt 7 lw 2 title 'fieldsplit-schur (p = 1.38)', \
-     data index 1 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.69)', \
+     data index 1 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.62)', \
      data index 2 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.52)', \
-     data index 3 using 1:2 with linespoints pt 7 lw 2 title 'schur-amg (p = 1.28)', \
+     data index 3 using 1:2 with linespoints pt 7 lw 2 title 'schur-amg (p = 1.26)', \
      data index 4 using 1:2 with linespoints pt 7 lw 2 title 'schur-gamg (p = 1.29)', \
      data index 5 using 1:2 with linespoints pt 7 lw 2 title 'schur-lu (p = 1.37)'
 set output 'block-strips-peak-memory.svg'
 set ylabel 'peak resident memory (MB)'
 set title 'block-strips: peak memory'
 plot data index 0 using 1:3 with linespoints pt 7 lw 2 title 'fieldsplit-schur (p = 0.83)', \
-     data index 1 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.24)', \
+     data index 1 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.23)', \
      data index 2 using 1:3 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.13)', \
-     data index 3 using 1:3 with linespoints pt 7 lw 2 title 'schur-amg (p = 0.79)', \
+     data index 3 using 1:3 with linespoints pt 7 lw 2 title 'schur-amg (p = 0.80)', \
      data index 4 using 1:3 with linespoints pt 7 lw 2 title 'schur-gamg (p = 0.78)', \
      data index 5 using 1:3 with linespoints pt 7 lw 2 title 'schur-lu (p = 0.72)'
 unset logscale

@@ -9,9 +9,9 @@ set output 'block-strips-mr-time-per-solve.svg'
 set ylabel 's / linear solve (set-up + Krylov)'
 set title 'block-strips-mr: time per linear solve'
 plot data index 0 using 1:2 with linespoints pt 7 lw 2 title 'fieldsplit-schur (p = 1.52)', \
-     data index 1 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.72)', \
+     data index 1 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps (p = 1.69)', \
      data index 2 using 1:2 with linespoints pt 7 lw 2 title 'lu-mumps-blr (p = 1.51)', \
-     data index 3 using 1:2 with linespoints pt 7 lw 2 title 'schur-amg (p = 1.18)', \
+     data index 3 using 1:2 with linespoints pt 7 lw 2 title 'schur-amg (p = 1.23)', \
      data index 4 using 1:2 with linespoints pt 7 lw 2 title 'schur-gamg (p = 1.25)'
 set output 'block-strips-mr-peak-memory.svg'
 set ylabel 'peak resident memory (MB)'
