@@ -18,6 +18,7 @@
 
 #include "bench_estimate.hpp"
 #include "bench_report.hpp"
+#include "bench_sample.hpp"
 #include "builtin_scenes.hpp"
 #include "checkpoint.hpp"
 #include "child_process.hpp"
@@ -28,6 +29,7 @@
 #include "run_metrics.hpp"
 #include "solve_child.hpp"
 #include "sweep_table.hpp"
+#include "system_record.hpp"
 
 namespace stiction::harness {
 
@@ -41,7 +43,7 @@ const char* kRunColumns =
     "load_steps_completed,newton_iterations,linear_solves,krylov_iterations,krylov_per_linear_solve,wall_seconds,"
     "assembly_seconds,contact_assembly_seconds,setup_seconds,solve_seconds,seconds_per_linear_solve,peak_rss_mb,peak_rss_mb_per_process,mumps_memory_mb,"
     "mumps_factor_fraction,amg_operator_complexity,krylov_rtol,mumps_ordering,newton_rtol,newton_forcing,petsc_options,"
-    "detail";
+    "revision,detail";
 const char* kStepColumns =
     "scene,level,solver,processes,step,newton_iteration,converged,reason,krylov_iterations,initial_residual,final_residual,"
     "assembly_seconds,setup_seconds,solve_seconds";
@@ -163,7 +165,8 @@ SolveFigures solve_figures(const BenchRun& run, const toml::array* solves) {
 
 // Appends the run's row to runs.csv and its linear solves to steps.csv; returns its wall time.
 double write_rows(const std::string& out, const BenchRun& run, const ChildResult& child, const std::string& run_dir,
-                  const std::string& petsc_options, const std::optional<Interrupted>& continued) {
+                  const std::string& petsc_options, const std::optional<Interrupted>& continued,
+                  const std::string& revision) {
   const std::string metrics_path = run_dir + "/metrics.toml";
   toml::table metrics;
   bool have_metrics = fs::exists(metrics_path);
@@ -207,7 +210,7 @@ double write_rows(const std::string& out, const BenchRun& run, const ChildResult
   const std::string row = fmt::format(
       "{},{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.0f},{:.2f},{:.3f},"
       "{:.3f},{:.3f},{:.3f},{:.3f},{:.4f},"
-      "{:.1f},{:.1f},{:.0f},{},{:.3f},{},{},{},{},{},{}",
+      "{:.1f},{:.1f},{:.0f},{},{:.3f},{},{},{},{},{},{},{}",
       run.scene, run.level, run.solver, run.processes, status, m["converged"].value<bool>().value_or(false) ? 1 : 0,
       csv_field(m["reason"].value<std::string>().value_or(status)), num("unknowns"), num("unknowns_u_l"),
       num("unknowns_u_q"), num("unknowns_p"), num("multipliers"), num("vertices"), num("cells"), num("load_steps"), num("load_steps_completed"), num("newton_iterations"), solves,
@@ -219,10 +222,30 @@ double write_rows(const std::string& out, const BenchRun& run, const ChildResult
       figures.amg_solves ? figures.amg_complexity_sum / figures.amg_solves : 0.0,
       figures.krylov_rtol > 0 ? fmt::format("{:g}", figures.krylov_rtol) : "", figures.ordering,
       m["newton_rtol"] ? fmt::format("{:g}", num("newton_rtol")) : std::string(),
-      m["newton_forcing"].value<std::string>().value_or(""), csv_field(petsc_options), csv_field(detail));
+      m["newton_forcing"].value<std::string>().value_or(""), csv_field(petsc_options), csv_field(revision),
+      csv_field(detail));
   if (!figures.steps_csv.empty()) append_durably(out + "/steps.csv", figures.steps_csv);
   append_durably(out + "/runs.csv", row);
   return wall;
+}
+
+// The --whole items "SOLVER:LEVEL" as (solver, level) pairs; throws on any other form.
+std::vector<std::pair<std::string, int>> whole_runs(const BenchOptions& o) {
+  std::vector<std::pair<std::string, int>> runs;
+  for (const auto& item : o.whole) {
+    const size_t colon = item.rfind(':');
+    size_t used = 0;
+    int level = -1;
+    try {
+      if (colon != std::string::npos) level = std::stoi(item.substr(colon + 1), &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (colon == std::string::npos || colon == 0 || used == 0 || colon + 1 + used != item.size())
+      throw Error(fmt::format("--whole '{}': expected SOLVER:LEVEL (e.g. lu-mumps:0)", item));
+    runs.emplace_back(item.substr(0, colon), level);
+  }
+  return runs;
 }
 
 // Refuses, before any run, a sweep that would fail or silently ignore part of itself.
@@ -245,6 +268,22 @@ void check_sweep(const BenchOptions& o, const std::vector<std::string>& scenes,
         if (n > 1 && b.name == s && !b.distributed)
           throw Error(fmt::format("solver backend '{}' runs on one MPI process: leave it out of a sweep with --ranks {}",
                                   s, n));
+  if (!o.sample.empty()) {
+    parse_system_selection(o.sample);  // throws on a malformed item
+    if (!known.count(o.path_solver))
+      throw Error(fmt::format("unknown path backend '{}' (valid: {})", o.path_solver, solvers::backend_names()));
+    for (const auto& [solver, level] : whole_runs(o)) {
+      if (!known.count(solver))
+        throw Error(fmt::format("--whole {}:{}: unknown solver backend (valid: {})", solver, level,
+                                solvers::backend_names()));
+      if (std::find(o.levels.begin(), o.levels.end(), level) == o.levels.end())
+        throw Error(fmt::format("--whole {}:{}: level {} is not one of the sweep's --levels", solver, level, level));
+    }
+    for (int n : o.ranks)
+      if (n != 1) throw Error("a sweep with --sample runs on one process (--ranks 1)");
+  } else if (!o.whole.empty()) {
+    throw Error("--whole names the whole runs beside a recorded sample: it needs --sample");
+  }
   // PETSc options go to the children whose prefix they carry; one that matches no backend
   // of the sweep would be silently ignored, so it is an error.
   for (size_t k = 0; k < o.petsc_options.size(); ++k) {
@@ -300,6 +339,189 @@ std::vector<std::string> child_arguments(const BenchOptions& o, const BenchRun& 
   return argv;
 }
 
+// One step of a sweep: a whole run (the path run of a sample records its systems), or one
+// backend's replay of a recorded sample.
+struct Job {
+  enum class Kind { Whole, Path, Sample } kind = Kind::Whole;
+  BenchRun run;
+  // The key the time-left estimate knows the job by: a replay is estimated from the same
+  // backend's replays, never from its whole runs.
+  BenchRun estimated() const {
+    return kind == Kind::Sample ? BenchRun{run.scene, "sample:" + run.solver, run.level, run.processes} : run;
+  }
+};
+
+// The sweep's jobs in order. Without a sample: scene x solver x level x processes, whole
+// runs. With one: per level and scene, the path run, the extra whole runs at that level,
+// then every backend's replay of the sample.
+std::vector<Job> plan_jobs(const BenchOptions& o, const std::vector<std::string>& scenes,
+                           const std::vector<std::string>& solvers_list) {
+  std::vector<Job> jobs;
+  for (int level : o.levels)
+    for (const auto& scene : scenes) {
+      if (o.sample.empty()) {
+        for (const auto& solver : solvers_list)
+          for (int processes : o.ranks) jobs.push_back({Job::Kind::Whole, {scene, solver, level, processes}});
+        continue;
+      }
+      jobs.push_back({Job::Kind::Path, {scene, o.path_solver, level, 1}});
+      for (const auto& [solver, whole_level] : whole_runs(o))
+        if (whole_level == level && solver != o.path_solver) jobs.push_back({Job::Kind::Whole, {scene, solver, level, 1}});
+      for (const auto& solver : solvers_list) jobs.push_back({Job::Kind::Sample, {scene, solver, level, 1}});
+    }
+  return jobs;
+}
+
+// The state a sweep carries from job to job.
+struct Sweep {
+  const BenchOptions& o;
+  std::string out, exe, revision;
+  ChildLimits limits;
+  std::vector<BenchRun> estimated;  // every job, as the time-left estimate knows it
+  FinishedRuns finished;
+  std::set<std::string> done;       // runs.csv and samples.csv keys already there
+};
+
+std::string sample_key(const BenchRun& r) { return "sample|" + r.key(); }
+
+// The row of runs.csv of a finished whole run (empty when there is none).
+std::map<std::string, std::string> runs_row(const std::string& out, const BenchRun& run) {
+  for (const auto& row : read_csv(out + "/runs.csv").rows)
+    if (bench_run_of(row).key() == run.key()) return row;
+  return {};
+}
+
+void run_whole(Sweep& sw, const Job& job, size_t position) {
+  const BenchRun& run = job.run;
+  const BenchOptions& o = sw.o;
+  const std::string progress = fmt::format("bench [{}/{}] {} {} L{}{}{}", position + 1, sw.estimated.size(), run.scene,
+                                           run.solver, run.level,
+                                           run.processes > 1 ? fmt::format(" np{}", run.processes) : "",
+                                           job.kind == Job::Kind::Path ? " (path, records the sample)" : "");
+  const std::string run_dir = (fs::path(sw.out) / "runs" / run.id()).string();
+  const std::optional<Interrupted> continued = o.resume ? interrupted_run(run, run_dir) : std::nullopt;
+  std::error_code ec;
+  if (!continued) {
+    fs::remove_all(run_dir, ec);  // a run the sweep had started and not recorded: its own leftovers
+    fs::create_directories(run_dir, ec);
+  } else if (continued->ended) {
+    fmt::print(stderr, "{}: had ended without its row; the row comes from its record\n", progress);
+  } else {
+    fmt::print(stderr, "{}: continued from its checkpoint after load step {}\n", progress, continued->last_step);
+  }
+  std::vector<std::string> argv = child_arguments(o, run, sw.exe, run_dir, continued.has_value());
+  if (job.kind == Job::Kind::Path) {
+    const auto record = record_arguments(sample_record_dir(sw.out, run.scene, run.level), o.sample);
+    argv.insert(argv.begin() + 13, record.begin(), record.end());  // before the PETSc options
+  }
+  int last_step = -1;
+  double last_print = -1e9;
+  const auto on_tick = [&](double t) {
+    const int step = count_data_lines(run_dir + "/steps.csv");
+    if (step != last_step || t - last_print > 30) {
+      fmt::print(stderr, "{}: {} load steps done, {:.0f} s; {}\n", progress, step, t,
+                 time_left(sw.estimated, position, t, sw.finished, step, o.time_limit_seconds));
+      last_step = step;
+      last_print = t;
+    }
+  };
+  // The time limit holds for the whole run, its earlier segments included.
+  ChildLimits run_limits = sw.limits;
+  if (continued) run_limits.seconds = std::max(sw.limits.seconds - continued->wall_seconds, 1.0);
+  ChildResult child;
+  if (continued && continued->ended)
+    child.exit_code = continued->converged ? 0 : 3;  // as the run's own exit: converged, or Newton failed
+  else
+    child = run_child(argv, run_dir + "/stdout.txt", run_dir + "/stderr.txt", run_limits, on_tick,
+                      launcher_for(run.processes));
+  const double wall = write_rows(sw.out, run, child, run_dir, options_for(o, run.solver), continued, sw.revision);
+  const std::string status = solve_status(child, fs::exists(run_dir + "/metrics.toml"));
+  if (status == "ok") sw.finished.add(run, wall, load_step_fractions(run_dir + "/steps.csv"));
+  fmt::print(stderr, "{}: {} in {:.1f} s, peak {:.0f} MB\n", progress, status, wall, child.peak_rss_mb);
+}
+
+void run_sample(Sweep& sw, const Job& job, size_t position) {
+  const BenchRun& run = job.run;
+  const BenchOptions& o = sw.o;
+  const std::string progress = fmt::format("bench [{}/{}] {} {} L{} (recorded sample)", position + 1,
+                                           sw.estimated.size(), run.scene, run.solver, run.level);
+  const std::string record_dir = sample_record_dir(sw.out, run.scene, run.level);
+  const std::string run_dir = sample_run_dir(sw.out, run.scene, run.level, run.solver);
+  const std::string samples_csv = sw.out + "/samples.csv";
+  std::vector<std::string> recorded;
+  try {
+    recorded = recorded_system_dirs(record_dir);
+  } catch (const Error&) {
+  }
+  if (recorded.empty()) {
+    const std::string why = fmt::format("the path run ({}) recorded none of the systems {}", o.path_solver,
+                                        fmt::join(o.sample, ","));
+    append_durably(samples_csv, unrecorded_sample_row(run.scene, run.level, run.solver, why, sw.revision));
+    fmt::print(stderr, "{}: no-record ({})\n", progress, why);
+    return;
+  }
+  std::error_code ec;
+  fs::remove_all(run_dir, ec);  // a replay the sweep had started and not recorded
+  fs::create_directories(run_dir, ec);
+  std::vector<std::string> argv = replay_arguments(sw.exe, record_dir, run.solver, run_dir);
+  std::istringstream words(options_for(o, run.solver));
+  for (std::string w; words >> w;) argv.push_back(w);
+  double last_print = -1e9;
+  const auto on_tick = [&](double t) {
+    if (t - last_print < 30) return;
+    fmt::print(stderr, "{}: {} of {} systems solved, {:.0f} s; {}\n", progress,
+               count_data_lines(run_dir + "/replay.csv"), recorded.size(), t,
+               time_left(sw.estimated, position, t, sw.finished, 0, o.time_limit_seconds));
+    last_print = t;
+  };
+  const ChildResult child = run_child(argv, run_dir + "/stdout.txt", run_dir + "/stderr.txt", sw.limits, on_tick);
+  const auto path_row = runs_row(sw.out, {run.scene, o.path_solver, run.level, 1});
+  const std::string row = sample_row(run.scene, run.level, run.solver, run_dir, child, path_row,
+                                     static_cast<int>(o.sample.size()), sw.revision);
+  append_durably(samples_csv, row);
+  sw.finished.add(job.estimated(), child.wall_seconds);
+  const CsvTable parsed = parse_csv(std::string(kSampleColumns) + "\n" + row);
+  fmt::print(stderr, "{}: {} in {:.1f} s, peak {:.0f} MB\n", progress, parsed.rows.front().at("status"),
+             child.wall_seconds, child.peak_rss_mb);
+}
+
+// Opens runs.csv (and samples.csv for a sweep with a sample) and collects what an earlier,
+// resumed sweep finished.
+void open_tables(Sweep& sw, const RunInfo& info, const std::vector<std::string>& solvers_list) {
+  const BenchOptions& o = sw.o;
+  std::string header;  // of a new sweep (steps.csv and samples.csv get it too)
+  const CsvTable previous = open_sweep_table(sw.out + "/runs.csv", kRunColumns, o.resume, info, [&] {
+    header = sweep_header(o, info, sw.limits, solvers_list);
+    return header;
+  }, o.allow_other_revision);
+  for (const auto& row : previous.rows) {
+    const BenchRun run = bench_run_of(row);
+    sw.done.insert(run.key());
+    if (row.at("status") == "ok")
+      sw.finished.add(run, std::strtod(row.at("wall_seconds").c_str(), nullptr),
+                      load_step_fractions(run_directory(sw.out, row) + "/steps.csv"));
+  }
+  const std::string steps_csv = sw.out + "/steps.csv";
+  if (!header.empty())
+    append_durably(steps_csv, header + kStepColumns);
+  else if (fs::exists(steps_csv))  // a resumed sweep of an older version: its lines get the new columns too
+    upgrade_sweep_columns(steps_csv, kStepColumns);
+  if (o.sample.empty()) return;
+  const std::string samples_csv = sw.out + "/samples.csv";
+  if (!fs::exists(samples_csv)) {
+    append_durably(samples_csv, (header.empty() ? sweep_header(o, info, sw.limits, solvers_list) : header) +
+                                    fmt::format("# sample: systems {} of each scene and level, recorded by {}\n",
+                                                fmt::join(o.sample, ","), o.path_solver) +
+                                    kSampleColumns);
+    return;
+  }
+  for (const auto& row : upgrade_sweep_columns(samples_csv, kSampleColumns).rows) {
+    const BenchRun run{row.at("scene"), row.at("solver"), static_cast<int>(number(row, "level")), 1};
+    sw.done.insert(sample_key(run));
+    sw.finished.add(Job{Job::Kind::Sample, run}.estimated(), 0);
+  }
+}
+
 }  // namespace
 
 void run_bench(const BenchOptions& o, const RunInfo& info) {
@@ -310,92 +532,31 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
     for (const auto& b : solvers::backends()) solvers_list.push_back(b.name);
   check_sweep(o, scenes, solvers_list);
 
-  const std::string out = o.out_dir;
+  Sweep sw{o, o.out_dir, self_executable(), build_revision(), sweep_limits(o.time_limit_seconds, o.memory_limit_mb),
+           {}, {}, {}};
   std::error_code ec;
-  fs::create_directories(fs::path(out) / "runs", ec);
-  if (ec) throw Error(fmt::format("cannot create '{}': {}", out, ec.message()));
-  const std::string runs_csv = out + "/runs.csv";
-  std::set<std::string> done;
-  FinishedRuns finished_runs;  // for the time-left estimate
-  const ChildLimits limits = sweep_limits(o.time_limit_seconds, o.memory_limit_mb);
-  std::string header;  // of a new sweep (steps.csv gets it too)
-  const CsvTable previous = open_sweep_table(runs_csv, kRunColumns, o.resume, info, [&] {
-    header = sweep_header(o, info, limits, solvers_list);
-    return header;
-  });
-  for (const auto& row : previous.rows) {
-    const std::string processes = row.at("processes").empty() ? "1" : row.at("processes");  // an older sweep's rows
-    const std::string key = fmt::format("{}|{}|{}|{}", row.at("scene"), row.at("level"), row.at("solver"), processes);
-    done.insert(key);
-    if (row.at("status") == "ok")
-      finished_runs.add({row.at("scene"), row.at("solver"), std::stoi(row.at("level")), std::stoi(processes)},
-                        std::strtod(row.at("wall_seconds").c_str(), nullptr),
-                        load_step_fractions(run_directory(out, row) + "/steps.csv"));
-  }
-  const std::string steps_csv = out + "/steps.csv";
-  if (!header.empty())
-    append_durably(steps_csv, header + kStepColumns);
-  else if (fs::exists(steps_csv))  // a resumed sweep of an older version: its lines get the new columns too
-    upgrade_sweep_columns(steps_csv, kStepColumns);
+  fs::create_directories(fs::path(sw.out) / "runs", ec);
+  if (ec) throw Error(fmt::format("cannot create '{}': {}", sw.out, ec.message()));
+  open_tables(sw, info, solvers_list);
 
-  std::vector<BenchRun> runs;
-  for (int level : o.levels)
-    for (const auto& scene : scenes)
-      for (const auto& solver : solvers_list)
-        for (int processes : o.ranks) runs.push_back({scene, solver, level, processes});
-  const std::string exe = self_executable();
-  int index = 0;
-  for (const BenchRun& run : runs) {
-    const size_t position = index;
-    ++index;
-    const std::string on = run.processes > 1 ? fmt::format(" np{}", run.processes) : "";
-    if (done.count(run.key())) {
-      fmt::print(stderr, "bench [{}/{}] {} {} L{}{}: already in runs.csv, skipped\n", index, runs.size(), run.scene,
-                 run.solver, run.level, on);
+  const std::vector<Job> jobs = plan_jobs(o, scenes, solvers_list);
+  for (const auto& job : jobs) sw.estimated.push_back(job.estimated());
+  for (size_t position = 0; position < jobs.size(); ++position) {
+    const Job& job = jobs[position];
+    const bool sample = job.kind == Job::Kind::Sample;
+    if (sw.done.count(sample ? sample_key(job.run) : job.run.key())) {
+      fmt::print(stderr, "bench [{}/{}] {} {} L{}{}: already in {}, skipped\n", position + 1, jobs.size(),
+                 job.run.scene, job.run.solver, job.run.level, sample ? " (recorded sample)" : "",
+                 sample ? "samples.csv" : "runs.csv");
       continue;
     }
-    const std::string run_dir = (fs::path(out) / "runs" / run.id()).string();
-    const std::optional<Interrupted> continued = o.resume ? interrupted_run(run, run_dir) : std::nullopt;
-    if (!continued) {
-      fs::remove_all(run_dir, ec);
-      fs::create_directories(run_dir, ec);
-    } else if (continued->ended) {
-      fmt::print(stderr, "bench [{}/{}] {} {} L{}{}: had ended without its row; the row comes from its record\n",
-                 index, runs.size(), run.scene, run.solver, run.level, on);
-    } else {
-      fmt::print(stderr, "bench [{}/{}] {} {} L{}{}: continued from its checkpoint after load step {}\n", index,
-                 runs.size(), run.scene, run.solver, run.level, on, continued->last_step);
-    }
-    const std::vector<std::string> argv = child_arguments(o, run, exe, run_dir, continued.has_value());
-    int last_step = -1;
-    double last_print = -1e9;
-    const auto on_tick = [&](double t) {
-      const int step = count_data_lines(run_dir + "/steps.csv");
-      if (step != last_step || t - last_print > 30) {
-        fmt::print(stderr, "bench [{}/{}] {} {} L{}{}: {} load steps done, {:.0f} s; {}\n", index, runs.size(),
-                   run.scene, run.solver, run.level, on, step, t,
-                   time_left(runs, position, t, finished_runs, step, o.time_limit_seconds));
-        last_step = step;
-        last_print = t;
-      }
-    };
-    // The time limit holds for the whole run, its earlier segments included.
-    ChildLimits run_limits = limits;
-    if (continued) run_limits.seconds = std::max(limits.seconds - continued->wall_seconds, 1.0);
-    ChildResult child;
-    if (continued && continued->ended)
-      child.exit_code = continued->converged ? 0 : 3;  // as the run's own exit: converged, or Newton failed
+    if (sample)
+      run_sample(sw, job, position);
     else
-      child = run_child(argv, run_dir + "/stdout.txt", run_dir + "/stderr.txt", run_limits, on_tick,
-                        launcher_for(run.processes));
-    const double wall = write_rows(out, run, child, run_dir, options_for(o, run.solver), continued);
-    const std::string status = solve_status(child, fs::exists(run_dir + "/metrics.toml"));
-    if (status == "ok") finished_runs.add(run, wall, load_step_fractions(run_dir + "/steps.csv"));
-    fmt::print(stderr, "bench [{}/{}] {} {} L{}{}: {} in {:.1f} s, peak {:.0f} MB\n", index, runs.size(), run.scene,
-               run.solver, run.level, on, status, wall, child.peak_rss_mb);
-    write_bench_report(out);
+      run_whole(sw, job, position);
+    write_bench_report(sw.out);
   }
-  write_bench_report(out);
+  write_bench_report(sw.out);
 }
 
 }  // namespace stiction::harness

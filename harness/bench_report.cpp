@@ -108,10 +108,34 @@ std::string assembly_split_section(const CsvTable& runs) {
          rows;
 }
 
+// A sweep's sample rows in the shape of runs.csv's, for the growth plots: the unknowns
+// column of a sample is the whole system's already.
+CsvTable samples_as_runs(const CsvTable& samples) {
+  CsvTable runs = samples;
+  for (auto& r : runs.rows) {
+    r["multipliers"] = "0";
+    r["krylov_per_linear_solve"] = r["krylov_per_solve"];
+  }
+  return runs;
+}
+
+// "Rows by revision" when a resumed sweep's rows came from binaries of several revisions.
+std::string revisions_text(const CsvTable& runs, const CsvTable& samples) {
+  std::map<std::string, int> count;
+  for (const CsvTable* t : {&runs, &samples})
+    for (const auto& r : t->rows)
+      if (const auto it = r.find("revision"); it != r.end() && !it->second.empty()) ++count[it->second];
+  if (count.size() < 2) return "";
+  std::string text = "\n**Rows from several revisions** (the `revision` column of runs.csv and samples.csv): ";
+  for (const auto& [revision, n] : count) text += fmt::format("{} rows from {}; ", n, revision);
+  return text.substr(0, text.size() - 2) + ".\n";
+}
+
 }  // namespace
 
 void write_bench_report(const std::string& out_dir) {
   const CsvTable all_runs = read_csv(out_dir + "/runs.csv");
+  const CsvTable samples = read_csv(out_dir + "/samples.csv");
   // The tables, ratios and plots below compare backends on one process; runs on several
   // are compared with their one-process run in the strong-scaling section.
   CsvTable runs = all_runs;
@@ -135,7 +159,8 @@ void write_bench_report(const std::string& out_dir) {
     if (std::find(scenes.begin(), scenes.end(), r.at("scene")) == scenes.end()) scenes.push_back(r.at("scene"));
     solvers_seen.insert(r.at("solver"));
   }
-  md += paper_tables_section(runs, out_dir);
+  md += revisions_text(all_runs, samples);
+  md += paper_tables_section(runs, samples, out_dir);
   for (const auto& scene : scenes) {
     md += fmt::format("\n## {}\n\n| level | solver | status | unknowns | total s | s / linear solve | peak MB | Newton its "
                       "| linear solves | Krylov / solve | time/solve ratio | memory ratio |\n"
@@ -159,7 +184,12 @@ void write_bench_report(const std::string& out_dir) {
                         per_solve && ref ? ratio(number(*ref, "seconds_per_linear_solve"), number(r, "seconds_per_linear_solve")) : "—",
                         ok && ref ? ratio(number(*ref, "peak_rss_mb"), number(r, "peak_rss_mb")) : "—");
     }
-    md += scaling_section(runs, scene, out_dir);
+    const bool paper_scene = scene == "block-strips" || scene == "block-strips-mr";
+    bool sampled = false;
+    for (const auto& r : samples.rows) sampled |= r.at("scene") == scene;
+    if (sampled && !paper_scene) md += sample_table(samples, 0, scene);
+    md += sampled ? scaling_section(samples_as_runs(samples), scene, out_dir, "recorded sample", paper_points(scene))
+                  : scaling_section(runs, scene, out_dir, "", paper_points(scene));
   }
 
   md += strong_scaling_section(all_runs);

@@ -39,6 +39,10 @@ void CommandLine::declare_solve() {
   solve_cmd->add_flag("--quiet", solve.quiet, "no progress on stderr");
   solve_cmd->add_option("--metrics", solve.metrics_path, "write a TOML record of the run (used by `stiction bench`)");
   solve_cmd->add_option("--record", solve.record_dir, "record every Newton system here (see `stiction replay`)");
+  solve_cmd->add_option("--record-only", solve.record_only,
+                        "with --record, only these systems: STEP:ITERATION (load step, Newton iteration from 1), "
+                        "comma separated")
+      ->delimiter(',');
   add_krylov_tolerance_options(solve_cmd, solve.forcing, "Krylov tolerance per Newton step", solve.krylov_rtol,
                                "relative tolerance of every Krylov solve, overriding the scene's newton.krylov_rtol "
                                "(0: the backend's -ksp_rtol)");
@@ -66,6 +70,8 @@ void CommandLine::declare_replay() {
   replay_cmd->add_option("record", replay.record_dir, "folder written by `stiction solve --record`")->required();
   replay_cmd->add_option("--solver", replay.solver, "linear-solver backend (see `stiction solvers`)");
   replay_cmd->add_option("--csv", replay.csv_path, "also write the table as CSV");
+  replay_cmd->add_flag("--stop-on-failure", replay.stop_on_failure,
+                       "stop at the first system whose solve does not converge");
   replay_cmd->add_option("--krylov-rtol", replay.krylov_rtol,
                          "relative tolerance of each Krylov solve: 'recorded' (default: the recording solve's, unless "
                          "-<backend>_ksp_rtol is given), 'backend' (the backend's own) or a number; the GMRES restart "
@@ -83,6 +89,17 @@ void CommandLine::declare_bench() {
       ->delimiter(',');
   bench_cmd->add_option("--out", bench.out_dir, "output directory (runs.csv, steps.csv, report.md, runs/)");
   bench_cmd->add_flag("--resume", bench.resume, "continue a sweep: skip the runs already in runs.csv");
+  bench_cmd->add_flag("--allow-other-revision", bench.allow_other_revision,
+                      "with --resume, accept a binary of another revision than the one that started the sweep");
+  bench_cmd->add_option("--sample", bench.sample,
+                        "record these Newton systems (STEP:ITERATION, comma separated) on one whole run per scene and "
+                        "level, and time every backend on them (samples.csv)")
+      ->delimiter(',');
+  bench_cmd->add_option("--path-solver", bench.path_solver,
+                        "with --sample, the backend whose whole runs solve each Newton path and record it (schur-amg)");
+  bench_cmd->add_option("--whole", bench.whole,
+                        "with --sample, more whole runs beside the path run: SOLVER:LEVEL, comma separated")
+      ->delimiter(',');
   bench_cmd->add_flag("--quick", bench.quick, "every scene's short version (stiction solve --quick)");
   bench_cmd->add_option("--time-limit", bench.time_limit_seconds, "wall-time limit per run, seconds (default 3600)");
   bench_cmd->add_option("--memory-limit-mb", bench.memory_limit_mb, "resident-memory limit per run (default 90% of RAM)");

@@ -103,7 +103,8 @@ std::string mesh_table(const std::vector<Row>& runs) {
   return any ? md : "";
 }
 
-std::string time_table(const std::vector<Row>& runs, const std::string& out_dir, int table, const std::string& scene) {
+std::string time_table(const std::vector<Row>& runs, const std::string& out_dir, int table, const std::string& scene,
+                       bool sampled) {
   const CsvTable paper = parse_csv(embedded_reference().at("tables2-3-times"));
   std::vector<int> levels;
   for (const auto& r : runs)
@@ -114,7 +115,7 @@ std::string time_table(const std::vector<Row>& runs, const std::string& out_dir,
   if (levels.empty()) return "";
   std::sort(levels.begin(), levels.end());
   std::string md = fmt::format(
-      "\n### Table {}: `{}`\n\nRatios are lu-mumps / backend (stiction) and GlobalLU / Schur (paper): above 1 the "
+      "\n### Table {}: `{}`{}\n\nRatios are lu-mumps / backend (stiction) and GlobalLU / Schur (paper): above 1 the "
       "iterative solver is faster or leaner. Newton iterations are summed over the 8 load steps; Newton rtol is the "
       "relative residual each load step stopped at. Force: the clamped top's reaction after the last step, relative "
       "difference to lu-mumps' (it should be at the Newton tolerance's level). The total ratio and the force are "
@@ -123,7 +124,7 @@ std::string time_table(const std::vector<Row>& runs, const std::string& out_dir,
       "bound (\"≥\") and no totals.\n\n| level | solver | status | total s | s / linear solve | peak MB | Newton its "
       "| Newton rtol | Krylov / solve | total ratio | s/solve ratio | memory ratio | force vs lu-mumps |\n"
       "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
-      table, scene);
+      table, scene, sampled ? ", whole runs (measured totals)" : "");
   for (int level : levels) {
     const Row* lu = find_run(runs, scene, level, "lu-mumps");
     const auto lu_force = lu && ok(*lu) ? top_force(out_dir, *lu) : std::nullopt;
@@ -173,20 +174,118 @@ std::string time_table(const std::vector<Row>& runs, const std::string& out_dir,
   return md;
 }
 
+// The fastest direct backend (one that factorises each system: lu-*) that solved the whole
+// sample of `scene` at `level`: the reference of every ratio on the sample.
+const Row* fastest_direct(const std::vector<Row>& samples, const std::string& scene, int level) {
+  const Row* best = nullptr;
+  for (const auto& r : samples)
+    if (r.at("scene") == scene && number(r, "level") == level && ok(r) && r.at("solver").rfind("lu-", 0) == 0 &&
+        (!best || number(r, "seconds_per_linear_solve") < number(*best, "seconds_per_linear_solve")))
+      best = &r;
+  return best;
+}
+
 }  // namespace
 
-std::string paper_tables_section(const CsvTable& table, const std::string& out_dir) {
+// Table 2 or 3 on the recorded sample (table 0: another scene, no paper rows): every
+// backend on the same systems, beside the paper.
+std::string sample_table(const CsvTable& samples, int table, const std::string& scene) {
+  const CsvTable paper = parse_csv(embedded_reference().at("tables2-3-times"));
+  std::vector<int> levels;
+  for (const auto& r : samples.rows)
+    if (r.at("scene") == scene) {
+      const int l = static_cast<int>(number(r, "level"));
+      if (std::find(levels.begin(), levels.end(), l) == levels.end()) levels.push_back(l);
+    }
+  if (levels.empty()) return "";
+  std::sort(levels.begin(), levels.end());
+  std::string sample_text;
+  for (const auto& c : samples.comments)
+    if (c.rfind("sample: ", 0) == 0) sample_text = c.substr(8);
+  const std::string title =
+      table ? fmt::format("Table {}: `{}`, every backend on the recorded sample", table, scene)
+            : fmt::format("`{}`: every backend on the recorded sample", scene);
+  std::string md = fmt::format(
+      "\n### {}\n\nSample: {}. Each backend solved those same "
+      "Newton systems in a process of its own. s / linear solve = set-up + solve, averaged over the sample; peak MB = "
+      "that process's peak resident memory (the systems and the solver, without the mesh and the assembly of a whole "
+      "run); residual = the largest ||b - A x|| / ||b|| of its answers, computed by the harness. Ratios are against "
+      "the reference named in the ref column (the fastest direct backend that solved the whole sample at that level): "
+      "above 1 the backend is faster or leaner. **Total s is projected**: the path run's wall time with its linear "
+      "solves' time replaced by as many solves at this backend's s / linear solve (the same Newton path assumed; the "
+      "whole runs' measured totals are in the next table). The paper's rows are its whole runs.\n\n"
+      "| level | solver | status | s / linear solve | peak MB | Krylov / solve | residual | ref | s/solve ratio | "
+      "memory ratio | total s (projected) | total ratio (projected) |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+      title, sample_text.empty() ? "see samples.csv" : sample_text, table ? " The paper's rows are its whole runs." : "");
+  for (int level : levels) {
+    const Row* ref = fastest_direct(samples.rows, scene, level);
+    for (const auto& r : samples.rows) {
+      if (r.at("scene") != scene || number(r, "level") != level) continue;
+      const bool done = ok(r), with_ref = done && ref;
+      md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", level, r.at("solver"),
+                        r.at("detail").empty() ? r.at("status") : r.at("status") + ": " + r.at("detail"),
+                        done ? fixed(number(r, "seconds_per_linear_solve"), 3) : "—",
+                        fixed(number(r, "peak_rss_mb"), 0), done ? fixed(number(r, "krylov_per_solve"), 1) : "—",
+                        done ? fmt::format("{:.1e}", number(r, "max_relative_residual")) : "—",
+                        ref ? ref->at("solver") : "—",
+                        with_ref ? ratio(number(*ref, "seconds_per_linear_solve"), number(r, "seconds_per_linear_solve"))
+                                 : "—",
+                        with_ref ? ratio(number(*ref, "peak_rss_mb"), number(r, "peak_rss_mb")) : "—",
+                        fixed(number(r, "projected_total_seconds"), 1),
+                        with_ref ? ratio(number(*ref, "projected_total_seconds"), number(r, "projected_total_seconds"))
+                                 : "—");
+    }
+    const Row *schur = nullptr, *global = nullptr;
+    for (const auto& p : paper.rows)
+      if (table && number(p, "table") == table && number(p, "level") == level)
+        (p.at("solver") == "GlobalLU" ? global : schur) = &p;
+    for (const Row* p : {schur, global}) {
+      if (!p) continue;
+      const bool has = number(*p, "total_seconds") > 0;
+      const bool pair = has && global && number(*global, "total_seconds") > 0;
+      md += fmt::format("| {} | paper {} | {} | {} | {} | — | — | {} | {} | {} | {} (whole run) | {} |\n", level,
+                        p->at("solver"), has ? "ok" : "out of memory", fixed(number(*p, "seconds_per_linear_solve"), 3),
+                        fixed(number(*p, "memory_mb"), 0), pair ? "paper GlobalLU" : "—",
+                        pair ? ratio(number(*global, "seconds_per_linear_solve"), number(*p, "seconds_per_linear_solve"))
+                             : "—",
+                        pair ? ratio(number(*global, "memory_mb"), number(*p, "memory_mb")) : "—",
+                        fixed(number(*p, "total_seconds"), 1),
+                        pair ? ratio(number(*global, "total_seconds"), number(*p, "total_seconds")) : "—");
+    }
+  }
+  return md;
+}
+
+std::vector<ReferencePoint> paper_points(const std::string& scene) {
+  const int table = scene == "block-strips" ? 2 : scene == "block-strips-mr" ? 3 : 0;
+  if (!table) return {};
+  const CsvTable meshes = parse_csv(embedded_reference().at("table1-meshes"));
+  std::map<int, double> unknowns;  // the paper's Newton system: P2 displacements and multipliers
+  for (const auto& m : meshes.rows)
+    unknowns[static_cast<int>(number(m, "level"))] = number(m, "u_unknowns") + number(m, "multiplier_unknowns");
+  std::vector<ReferencePoint> points;
+  for (const auto& p : parse_csv(embedded_reference().at("tables2-3-times")).rows)
+    if (number(p, "table") == table && number(p, "total_seconds") > 0)
+      points.push_back({"paper " + p.at("solver"), unknowns[static_cast<int>(number(p, "level"))],
+                        number(p, "seconds_per_linear_solve"), number(p, "memory_mb")});
+  return points;
+}
+
+std::string paper_tables_section(const CsvTable& table, const CsvTable& samples, const std::string& out_dir) {
   const std::vector<Row>& runs = table.rows;
   bool any = false;
   for (const auto& r : runs) any |= r.at("scene") == "block-strips" || r.at("scene") == "block-strips-mr";
   if (!any) return "";
+  const bool sampled = !samples.rows.empty();
   std::string md =
       "\n## The paper's tables (Lacasse & Fortin, Sec. 6.3)\n\nThe paper's figures: "
       "`reference/lacasse-fortin-block-strips/` (its README gives the source). Its hardware is not stated: compare "
       "ratios, not seconds.\n";
   md += mesh_table(runs);
-  md += time_table(runs, out_dir, 2, "block-strips");
-  md += time_table(runs, out_dir, 3, "block-strips-mr");
+  md += sample_table(samples, 2, "block-strips");
+  md += time_table(runs, out_dir, 2, "block-strips", sampled);
+  md += sample_table(samples, 3, "block-strips-mr");
+  md += time_table(runs, out_dir, 3, "block-strips-mr", sampled);
   md += memory_breakdown_table(runs, out_dir, {"block-strips", "block-strips-mr"});
   // Drawn by scripts/render-contact-states.py (scripts/paper-tables.sh) after the sweep.
   std::vector<std::string> pictures;

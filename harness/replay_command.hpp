@@ -20,16 +20,21 @@ struct ReplayOptions {
   // newton.krylov_restart, else its backend's), except under "backend" or when the command
   // line gives -<backend>_ksp_gmres_restart.
   std::string krylov_rtol = "recorded";
+  // Stop at the first system whose solve does not converge (the sweep's sample: a backend
+  // that fails one system is not timed on the others).
+  bool stop_on_failure = false;
 };
 
 // One recorded system solved again: the solve's statistics, the relative tolerance it ran
-// to (0: the backend's own), its GMRES restart (0: not a GMRES solve) and its relative
-// difference to the recorded solution.
+// to (0: the backend's own), its GMRES restart (0: not a GMRES solve), its relative
+// difference to the recorded solution and the relative residual of its own answer,
+// ||b - A x|| / ||b||, computed here and not taken from the backend.
 struct ReplayedSolve {
   nonlinear::LinearSolveStats stats;
   double krylov_rtol = 0;
   int krylov_restart = 0;
   double relative_difference = 0;
+  double relative_residual = 0;
 };
 // krylov_restart 0: the backend's own -ksp_gmres_restart.
 ReplayedSolve replay_system(const RecordedSystem& record, nonlinear::LinearSolver& solver, double krylov_rtol,
@@ -41,6 +46,9 @@ double replay_krylov_rtol(const std::string& choice, double recorded, bool rtol_
 // The GMRES restart a system recorded with `recorded` (RecordedSystem::krylov_restart) is
 // replayed with under that choice (0: the backend's own).
 int replay_krylov_restart(const std::string& choice, int recorded, bool restart_given);
+
+// The columns of `stiction replay --csv` (the sweep's sample reads them back).
+extern const char* const kReplayColumns;
 
 // Returns the largest relative difference to the recorded solutions.
 double run_replay(const ReplayOptions& options, const RunInfo& info);

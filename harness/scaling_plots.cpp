@@ -48,7 +48,8 @@ double log_log_slope(const std::vector<double>& x, const std::vector<double>& y)
   return sxx > 0 ? sxy / sxx : 0;
 }
 
-std::string scaling_section(const CsvTable& runs, const std::string& scene, const std::string& out_dir) {
+std::string scaling_section(const CsvTable& runs, const std::string& scene, const std::string& out_dir,
+                            const std::string& measured_on, const std::vector<ReferencePoint>& reference) {
   std::map<std::string, std::map<int, Point>> by_solver;  // solver -> level -> point
   for (const auto& r : runs.rows) {
     if (r.at("scene") != scene || r.at("status") != "ok") continue;
@@ -89,6 +90,20 @@ std::string scaling_section(const CsvTable& runs, const std::string& scene, cons
     krylov_plot += fmt::format("{}data index {} using 4:5 with linespoints pt 7 lw 2 title '{}'", sep, block, solver);
     ++block;
   }
+  // Reference points by label, one data block each, drawn as points without lines.
+  std::map<std::string, std::vector<const ReferencePoint*>> by_label;
+  for (const auto& p : reference) by_label[p.label].push_back(&p);
+  for (const auto& [label, points] : by_label) {
+    data += fmt::format("# {}\n# n s_per_solve peak_mb\n", label);
+    for (const auto* p : points)
+      data += fmt::format("{:.0f} {} {}\n", p->n, p->seconds_per_solve > 0 ? fmt::format("{:.6g}", p->seconds_per_solve) : "NaN",
+                          p->peak_mb > 0 ? fmt::format("{:.6g}", p->peak_mb) : "NaN");
+    data += "\n\n";
+    time_plot += fmt::format(", \\\n     data index {} using 1:2 with points pt 6 ps 1.5 lw 2 title '{}'", block, label);
+    memory_plot += fmt::format(", \\\n     data index {} using 1:3 with points pt 6 ps 1.5 lw 2 title '{}'", block, label);
+    ++block;
+  }
+  const std::string on = measured_on.empty() ? "" : " (" + measured_on + ")";
   const std::string stem = scene + "-growth";
   write_text_file(out_dir + "/" + stem + ".dat", data);
   const std::string script = fmt::format(
@@ -98,12 +113,12 @@ std::string scaling_section(const CsvTable& runs, const std::string& scene, cons
       "set key left top\nset grid\n"
       "set logscale xy\nset xlabel 'unknowns of the Newton system'\n"
       "set output '{1}-time-per-solve.svg'\nset ylabel 's / linear solve (set-up + Krylov)'\n"
-      "set title '{1}: time per linear solve'\n{2}\n"
+      "set title '{1}: time per linear solve{5}'\n{2}\n"
       "set output '{1}-peak-memory.svg'\nset ylabel 'peak resident memory (MB)'\n"
-      "set title '{1}: peak memory'\n{3}\n"
+      "set title '{1}: peak memory{5}'\n{3}\n"
       "unset logscale\nset xlabel 'mesh level'\nset xtics 1\nset ylabel 'Krylov iterations per Newton step'\n"
-      "set output '{1}-krylov.svg'\nset title '{1}: Krylov iterations per Newton step'\n{4}\n",
-      stem, scene, time_plot, memory_plot, krylov_plot);
+      "set output '{1}-krylov.svg'\nset title '{1}: Krylov iterations per Newton step{5}'\n{4}\n",
+      stem, scene, time_plot, memory_plot, krylov_plot, on);
   write_text_file(out_dir + "/" + stem + ".gp", script);
   if (!draw_with_gnuplot(out_dir, stem))
     return md + fmt::format("\nPlots not drawn: gnuplot failed or is missing (see `{}.log`; "

@@ -24,11 +24,21 @@ bool draw_with_gnuplot(const std::string& dir, const std::string& stem);
 // than two such points.
 double log_log_slope(const std::vector<double>& x, const std::vector<double>& y);
 
+// A published measurement drawn beside a sweep's (the paper's Tables 1-3): one solver at
+// one size; 0 where the source gives no figure.
+struct ReferencePoint {
+  std::string label;
+  double n = 0, seconds_per_solve = 0, peak_mb = 0;
+};
+
 // The markdown section for `scene` (exponents table and the plots) when the sweep holds
 // finished runs of it at two or more levels; empty otherwise. Writes
 // <scene>-growth.dat / .gp and, when gnuplot runs, <scene>-time-per-solve.svg,
-// <scene>-peak-memory.svg and <scene>-krylov.svg into out_dir.
-std::string scaling_section(const CsvTable& runs, const std::string& scene, const std::string& out_dir);
+// <scene>-peak-memory.svg and <scene>-krylov.svg into out_dir. `measured_on` names where
+// the figures come from in the titles ("" for whole runs); `reference` points are drawn
+// beside them on the time and memory plots.
+std::string scaling_section(const CsvTable& runs, const std::string& scene, const std::string& out_dir,
+                            const std::string& measured_on = "", const std::vector<ReferencePoint>& reference = {});
 
 // Krylov iterations per Newton step of one backend at one mesh level, the PETSc options its
 // run there was given beyond the backend's defaults, and the settings it ran with (those

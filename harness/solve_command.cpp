@@ -176,10 +176,13 @@ void run_solve(const SolveOptions& o, const RunInfo& info) {
   }
   if (!o.record_dir.empty()) {
     const RecordContext context{scene->name, run.level(), o.solver, info};
-    newton.set_system_observer([&, context](const nonlinear::NewtonSystem& sys, Vec du,
-                                            const nonlinear::LinearSolveStats& stats, int step, int iteration) {
-      record_system(o.record_dir, sys, du, stats, step, iteration, context);
+    const std::set<std::pair<int, int>> only = parse_system_selection(o.record_only);
+    newton.set_system_observer([&, context, only](const nonlinear::NewtonSystem& sys, Vec du,
+                                                  const nonlinear::LinearSolveStats& stats, int step, int iteration) {
+      if (only.empty() || only.count({step, iteration})) record_system(o.record_dir, sys, du, stats, step, iteration, context);
     });
+  } else if (!o.record_only.empty()) {
+    throw Error("--record-only needs --record DIR");
   }
   if (o.trace_contact && writer) newton.set_state_change_observer(
       [&view](const nonlinear::QuasiStaticSolver::StateChange& c) { print_state_change(c, view); });

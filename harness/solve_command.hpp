@@ -3,6 +3,7 @@
 // quantities (Newton iterations, residuals, linear-solver figures, reactions), of Newton
 // iterations and of contact nodes, and a checkpoint after every completed load step.
 #include <string>
+#include <vector>
 
 #include "run_info.hpp"
 
@@ -15,6 +16,7 @@ struct SolveOptions {
   std::string out_dir;           // default out/<scene>-L<level>
   std::string metrics_path;      // TOML record of the run for the sweep harness (optional)
   std::string record_dir;        // record every Newton system here (optional)
+  std::vector<std::string> record_only;  // with record_dir, only these systems ("STEP:ITERATION"; empty: all)
   bool write_vtu = true;         // --no-vtu turns the scene's VTU output off (sweeps)
   std::string forcing;           // overrides the scene's [newton] forcing when set
   double krylov_rtol = -1;       // overrides the scene's [newton] krylov_rtol when >= 0

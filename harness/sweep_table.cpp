@@ -43,15 +43,30 @@ bool upgrade_columns(const std::string& path, const CsvTable& old, const std::st
 }  // namespace
 
 CsvTable open_sweep_table(const std::string& path, const std::string& columns, bool resume, const RunInfo& info,
-                          const std::function<std::string()>& header) {
+                          const std::function<std::string()>& header, bool allow_other_revision) {
   if (!std::filesystem::exists(path)) {
     append_durably(path, header() + columns);
     return {};
   }
   if (!resume) throw Error(fmt::format("'{}' exists: pass --resume to continue that sweep or choose another --out", path));
+  // The binary's own revision, without what the source tree was at when it ran.
+  const auto binary = [](const std::string& r) { return r.substr(0, r.find(" (source tree at ")); };
+  const std::string started_by = binary(sweep_revision(read_csv(path)));
+  if (!allow_other_revision && !started_by.empty() && started_by != binary(info.git_revision))
+    throw Error(fmt::format("'{}' was started by a binary of revision {}, this one is {}: resume it with that "
+                            "binary, start a new sweep in another --out, or pass --allow-other-revision (each row "
+                            "names its revision)",
+                            path, started_by, binary(info.git_revision)));
   CsvTable previous = upgrade_sweep_columns(path, columns);
   append_durably(path, "# resumed: " + info.command_line + " at " + info.date + ", git " + info.git_revision);
   return previous;
+}
+
+std::string sweep_revision(const CsvTable& table) {
+  const std::string key = "git revision: ";
+  for (const auto& c : table.comments)
+    if (c.rfind(key, 0) == 0) return c.substr(key.size());
+  return "";
 }
 
 CsvTable upgrade_sweep_columns(const std::string& path, const std::string& columns) {

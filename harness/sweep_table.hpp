@@ -15,9 +15,14 @@ namespace stiction::harness {
 // existing one is refused without resume or when it has a column this version does not
 // write; one that lacks some of this version's columns (an older version's sweep) is
 // rewritten with them, empty in its rows; then its rows are returned and a "# resumed" line
-// is appended.
+// is appended. A resumed table whose sweep was started by a binary of another revision is
+// refused unless allow_other_revision (the rows then name their revisions).
 CsvTable open_sweep_table(const std::string& path, const std::string& columns, bool resume, const RunInfo& info,
-                          const std::function<std::string()>& header);
+                          const std::function<std::string()>& header, bool allow_other_revision = false);
+
+// The revision of the binary that started a sweep: its table's "git revision" header line
+// ("" when it has none).
+std::string sweep_revision(const CsvTable& table);
 
 // The upgrade step of open_sweep_table alone, for an existing file a resumed sweep appends
 // to beside its main table (bench's steps.csv): rewritten with the missing columns, or

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -33,6 +34,19 @@ void load_matrix(PetscMat& mat, MPI_Comm comm, PetscViewer viewer) {
 }
 
 }  // namespace
+
+std::set<std::pair<int, int>> parse_system_selection(const std::vector<std::string>& items) {
+  std::set<std::pair<int, int>> selected;
+  for (const auto& item : items) {
+    int step = 0, iteration = 0;
+    char colon = 0, extra = 0;
+    if (std::sscanf(item.c_str(), "%d%c%d%c", &step, &colon, &iteration, &extra) != 3 || colon != ':' || step < 1 ||
+        iteration < 1)
+      throw Error(fmt::format("system '{}': expected STEP:ITERATION, both from 1 (e.g. 6:2)", item));
+    selected.insert({step, iteration});
+  }
+  return selected;
+}
 
 void record_system(const std::string& dir, const nonlinear::NewtonSystem& sys, Vec solution,
                    const nonlinear::LinearSolveStats& stats, int step, int iteration, const RecordContext& ctx) {

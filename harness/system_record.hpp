@@ -9,7 +9,9 @@
 //                  follows and the mixed law's moduli, the multiplier surface's matrices
 //                  present, the recording solve's statistics (with its Krylov tolerance when
 //                  it was a Krylov solve), PETSc version, git revision
+#include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "nonlinear/linear_solver.hpp"
@@ -36,6 +38,9 @@ struct RecordedSystem {
   double krylov_rtol = 0;  // relative tolerance of the recording Krylov solve (0: a direct solve, or not recorded)
   int krylov_restart = 0;  // GMRES restart of the recording solve (0: not GMRES, or not recorded)
 };
+
+// "STEP:ITERATION" items (load step, Newton iteration from 1) as pairs; throws on any other form.
+std::set<std::pair<int, int>> parse_system_selection(const std::vector<std::string>& items);
 
 // The systems under `dir`, in (step, iteration) order; throws on a missing or unreadable record.
 std::vector<std::string> recorded_system_dirs(const std::string& dir);

@@ -9,15 +9,16 @@
 # scripts/paper-tables.sh), which skip the runs they already hold (--resume):
 # reports/ironing-2d/ (scripts/ironing-report.sh) and reports/crossed-tubes-3d/
 # (scripts/crossed-tubes-report.sh).
-# BENCH_LEVELS, BENCH_TIME_LIMIT (seconds per run, default 1800) and BENCH_RESUME=1
-# (continue an interrupted sweep instead of starting afresh) adjust it.
+# BENCH_LEVELS, BENCH_TIME_LIMIT (seconds per run, default 1800), BENCH_RESUME=1 (continue an
+# interrupted sweep) and BENCH_OUT (another directory: reports/latest holds a sweep already,
+# which is never deleted) adjust it.
 set -euo pipefail
 build=${1:-build}
-out=reports/latest
+default_out=reports/latest
 levels=${BENCH_LEVELS:-0,1}
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
 
-source "$(dirname "$0")/prepare-sweep-dir.sh"
+source "$(dirname "$0")/sweep-out-dir.sh"
 
 scenes=$("$build/stiction" scenes | awk '{ print $1 }' |
   grep -vxF -e ironing-2d -e ironing-2d-frictionless -e crossed-tubes-3d -e block-strips -e block-strips-mr |

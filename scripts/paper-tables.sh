@@ -1,35 +1,45 @@
 #!/usr/bin/env bash
-# The paper's benchmark (`make bench`): Tables 2 and 3 of Lacasse & Fortin, the block with
-# strips (`block-strips`: linear; `block-strips-mr`: Mooney-Rivlin u-p) under every backend,
-# each run in its own process (stiction bench), written to reports/paper-tables/:
-#   report.md             Tables 1-3 beside the paper's (reference/lacasse-fortin-block-strips/),
-#                         the usual per-scene tables, growth exponents and SVG plots
-#   runs.csv, steps.csv   the sweep's rows (kept as runs finish)
-#   contact-states-*.png  the deformed strips coloured by contact state at the last load
-#                         step (the paper's Figures 11 and 12), from the schur-amg runs
-# BENCH_LEVELS (default 0,1; 0,1,2 gives the full tables), BENCH_SCENES (default both),
-# BENCH_SOLVERS (default: every backend), BENCH_TIME_LIMIT (seconds per run, default 3600; a
-# run it stops gives its figures per linear solve over the solves it finished),
-# BENCH_PETSC_OPTIONS (PETSc options for the backends whose prefix they carry; each row
-# names those it ran with) and BENCH_RESUME=1 (continue an interrupted sweep, a killed run
-# from its checkpoint) adjust it; BENCH_OUT moves it. The level-2 rows, resumable over
-# several sittings (about 2 hours per run; the scenes' GMRES(50), newton.krylov_restart,
-# keeps schur-amg under 6 GB there):
-#   BENCH_LEVELS=2 BENCH_SOLVERS=schur-amg BENCH_RESUME=1 BENCH_TIME_LIMIT=36000 make bench
+# The paper's benchmark (`make bench`): Tables 1-3 of Lacasse & Fortin, the block with strips
+# (`block-strips`: linear; `block-strips-mr`: Mooney-Rivlin u-p), beside the paper's, from one
+# sweep (`stiction bench --sample`) at one revision:
+#   * per scene and level, one whole run of schur-amg solves the Newton path and records a
+#     fixed sample of its Newton systems (BENCH_SAMPLE, default 2:2,6:1,6:2: load step 2, Newton
+#     iteration 2, in the frictionless pressing; iterations 1 and 2 of load step 6, sliding
+#     with friction and the grooves closing);
+#   * whole runs of lu-mumps at level 0 beside it (BENCH_WHOLE);
+#   * every backend (BENCH_SOLVERS, default all) solves the recorded systems in its own process.
+# Output, in reports/paper-tables-<revision>/ (BENCH_OUT moves it): report.md, runs.csv (whole
+# runs), samples.csv (the sample), steps.csv, growth plots with the paper's points, and the
+# contact states at the last load step (the paper's Figures 11 and 12). About 45 minutes at
+# levels 0-1 on 2 cores; BENCH_LEVELS=0,1,2 adds level 2 (about 2.5 hours more, 6 GB).
+# BENCH_RESUME=1 continues an interrupted sweep in the same directory (a killed whole run from
+# its checkpoint); a binary of another revision is refused unless BENCH_ALLOW_OTHER_REVISION=1.
+# BENCH_TIME_LIMIT (seconds per run, default 3600) and BENCH_PETSC_OPTIONS (PETSc options for
+# the backends whose prefix they carry) adjust it. scripts/publish-report.sh then replaces
+# reports/paper-tables/ with the new directory: an explicit step.
 set -euo pipefail
 build=${1:-build}
-out=${BENCH_OUT:-reports/paper-tables}
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
 source "$(dirname "$0")/ensure-gnuplot.sh"
 
-source "$(dirname "$0")/prepare-sweep-dir.sh"
-solvers=()
-[ -n "${BENCH_SOLVERS:-}" ] && solvers=(--solvers "$BENCH_SOLVERS")
-read -r -a petsc_options <<< "${BENCH_PETSC_OPTIONS:-}"
-"$build/stiction" bench --scenes "${BENCH_SCENES:-block-strips,block-strips-mr}" --levels "${BENCH_LEVELS:-0,1}" \
-  "${solvers[@]}" --time-limit "${BENCH_TIME_LIMIT:-3600}" --out "$out" "${resume[@]}" "${petsc_options[@]}"
+revision=$(git rev-parse --short=12 HEAD 2>/dev/null || echo unknown)
+git diff --quiet HEAD 2>/dev/null || revision+=-modified
+default_out=reports/paper-tables-$revision
+source "$(dirname "$0")/sweep-out-dir.sh"
 
-# Contact states at the last load step of each schur-amg run (Debian's python3-matplotlib).
+levels=${BENCH_LEVELS:-0,1}
+whole=${BENCH_WHOLE:-}
+[[ ",$levels," == *,0,* && -z "${BENCH_WHOLE+set}" ]] && whole=lu-mumps:0
+args=(--scenes "${BENCH_SCENES:-block-strips,block-strips-mr}" --levels "$levels"
+      --sample "${BENCH_SAMPLE:-2:2,6:1,6:2}" --time-limit "${BENCH_TIME_LIMIT:-3600}" --out "$out")
+[ -n "$whole" ] && args+=(--whole "$whole")
+[ -n "${BENCH_SOLVERS:-}" ] && args+=(--solvers "$BENCH_SOLVERS")
+[ "${BENCH_ALLOW_OTHER_REVISION:-0}" = 1 ] && args+=(--allow-other-revision)
+read -r -a petsc_options <<< "${BENCH_PETSC_OPTIONS:-}"
+start=$(date +%s)
+"$build/stiction" bench "${args[@]}" "${resume[@]}" "${petsc_options[@]}"
+
+# Contact states at the last load step of each path run (Debian's python3-matplotlib).
 for run in "$out"/runs/block-strips*-schur-amg; do
   [ -f "$run/contact.csv" ] || continue
   name=$(basename "$run")
@@ -37,4 +47,5 @@ for run in "$out"/runs/block-strips*-schur-amg; do
     --title "$name" || echo "paper-tables: could not render $name" >&2
 done
 "$build/stiction" report "$out"  # the report shows the PNGs
-echo "paper-tables: wrote $out/report.md" >&2
+echo "paper-tables: wrote $out/report.md in $(( ($(date +%s) - start) / 60 )) min" >&2
+echo "paper-tables: scripts/publish-report.sh $out reports/paper-tables replaces the committed tables" >&2

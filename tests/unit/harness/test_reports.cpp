@@ -129,7 +129,7 @@ TEST(PaperTables, RatiosMeshCountsAndForcesBesideThePapers) {
   const std::string steps = "step,time,reaction_block/top_x,reaction_block/top_y,reaction_block/top_z\n";
   write(dir / "runs/block-strips-L0-lu-mumps/steps.csv", steps + "1,1,0,0,5\n8,8,3,0,-4\n");
   write(dir / "runs/block-strips-L0-schur-amg/steps.csv", steps + "8,8,3.003,0,-4.004\n");
-  const std::string md = paper_tables_section(read_csv((dir / "runs.csv").string()), dir.string());
+  const std::string md = paper_tables_section(read_csv((dir / "runs.csv").string()), CsvTable{}, dir.string());
   // Table 1: ours / paper with the relative difference.
   EXPECT_NE(md.find("| 0 | 2675 / 2654 (+0.8%) | 8900 / 9714 (-8.4%) | 49482 / 50748 (-2.5%) | 4029 / 3771 (+6.8%) |"),
             std::string::npos)
@@ -144,7 +144,7 @@ TEST(PaperTables, RatiosMeshCountsAndForcesBesideThePapers) {
       << md;
   EXPECT_EQ(md.find("Table 3"), std::string::npos) << "no block-strips-mr run, no Table 3";
   EXPECT_EQ(md.find("Where the memory goes"), std::string::npos) << "no run recorded memory figures";
-  EXPECT_EQ(paper_tables_section(CsvTable{}, dir.string()), "");
+  EXPECT_EQ(paper_tables_section(CsvTable{}, CsvTable{}, dir.string()), "");
   fs::remove_all(dir);
 }
 
@@ -159,7 +159,7 @@ TEST(PaperTables, TimeLimitedRunShowsItsFiguresPerSolve) {
       "block-strips,2,lu-mumps,ok,100,10,48,48,1.0,1000,20.0,9000,\n"
       "block-strips,2,fieldsplit-schur,time-limit,100,10,3,3,120.0,7200,800.0,9100,stopped after 7200 s\n"
       "block-strips,2,gamg,time-limit,100,10,0,0,0,3600,0,7000,stopped after 3600 s\n");
-  const std::string md = paper_tables_section(read_csv((dir / "runs.csv").string()), dir.string());
+  const std::string md = paper_tables_section(read_csv((dir / "runs.csv").string()), CsvTable{}, dir.string());
   EXPECT_NE(md.find("| 2 | fieldsplit-schur | time-limit: stopped after 7200 s | — | 800.000 | ≥ 9100 | — | — | 120.0 | — | "
                     "0.03 | — | — |"),
             std::string::npos)
@@ -187,7 +187,7 @@ TEST(PaperTables, TotalsAndForcesOnlyBetweenRunsOfTheSameNewtonTolerance) {
         "backend's\n" + steps + "8,8,3,0,-4\n");
   write(dir / "runs/block-strips-L1-schur-amg/steps.csv", steps + "8,8,3.003,0,-4.004\n");
   write(dir / "runs/block-strips-L1-schur-gamg/steps.csv", steps + "8,8,3.003,0,-4.004\n");
-  const std::string md = paper_tables_section(read_csv((dir / "runs.csv").string()), dir.string());
+  const std::string md = paper_tables_section(read_csv((dir / "runs.csv").string()), CsvTable{}, dir.string());
   EXPECT_NE(md.find("| 1 | lu-mumps | ok | 1800.0 | 36.000 | 7500 | 44 | 1e-08 | 1.0 | 1.00 | 1.00 | 1.00 | 0.0e+00 |"),
             std::string::npos)
       << md;
@@ -214,7 +214,7 @@ TEST(PaperTables, MemoryBreakdownAtTheLargestSolve) {
         "memory_block_copies_MB = 20.0\nmemory_krylov_MB = 80.0\n"
         "[[linear_solve]]\nmemory_heap_MB = 700.0\nmemory_matrix_MB = 320.0\nmemory_setup_MB = 60.0\n"
         "memory_block_copies_MB = 25.0\nmemory_krylov_MB = 200.0\nmemory_heap_free_MB = 90.0\n");
-  const std::string md = paper_tables_section(read_csv((dir / "runs.csv").string()), dir.string());
+  const std::string md = paper_tables_section(read_csv((dir / "runs.csv").string()), CsvTable{}, dir.string());
   // 700 - 320 - 60 - 200 = 120 for the rest, and the freed heap of that solve; a backend
   // without copied blocks says nothing of them, a run without the freed heap has a dash;
   // the run without figures (ilu-gmres) is left out.
