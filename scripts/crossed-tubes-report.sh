@@ -23,11 +23,13 @@ mkdir -p "$out"
   --levels "${TUBES_LEVELS:-0}" --time-limit "${TUBES_TIME_LIMIT:-5400}" --out "$out" --resume || true
 
 summary="$out/summary.md"
+# The note on the paper's unit that summary.md points to (reports/README.md) is now in
+# reports/crossed-tubes-3d/README.md, Caveats.
 {
   echo "# Crossed tubes: contact force and largest multiplier"
   echo
   echo "Made by \`scripts/crossed-tubes-report.sh\` from \`$out/runs/*/{steps,contact}.csv\`."
-  echo "The paper (Fig. 10) prints the total contact force at t = 80: 26.77 on its mesh, 27.97 after two refinements (no unit; see reports/README.md)."
+  echo "The paper (Fig. 10) prints the total contact force at t = 80: 26.77 on its mesh, 27.97 after two refinements (no unit; see reports/crossed-tubes-3d/README.md)."
   echo
   echo "| run | last step | t | contact force y (N) | largest lambda_n (MPa) | Newton iterations (all steps) |"
   echo "|---|---|---|---|---|---|"

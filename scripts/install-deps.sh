@@ -22,7 +22,7 @@ packages=(
   zlib1g-dev                # zlib: compressed binary VTU output
   gnuplot-nox               # report plots (SVG), drawn by `stiction report` and the report scripts
   python3-matplotlib        # headless PNG of contact states (scripts/render-contact-states.py)
-  libmumps-ptscotch-5.5     # MUMPS with Scotch, preloaded by hand for the ordering comparison (reports/README)
+  libmumps-ptscotch-5.5     # MUMPS with Scotch, preloaded by hand for the ordering comparison (docs/method.md)
 )
 
 missing=()

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Time and Krylov iterations per linear solve of the ironing runs, by level, over the same
-pseudo-times: the table of reports/ironing-2d-L2/README.md ("By level").
+pseudo-times: the per-solve figures of reports/ironing-2d-L2/README.md ("Key figures").
 
     ironing-solve-figures.py [REPORTS]      (REPORTS: the reports/ folder, default ./reports)
 

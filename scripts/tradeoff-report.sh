@@ -32,8 +32,8 @@ tradeoff block-compression 0 --discretisation --solvers schur-amg,schur-gamg,gam
 tradeoff cattaneo-mindlin-2d 1 --discretisation --coarser-levels 0 --solvers schur-amg,schur-gamg,lu-mumps
 # The paper's benchmark at level 0 (49 482 unknowns and 4 029 multipliers, all 8 load steps:
 # friction and the grooves' self-contact from step 5), with the level-1 reference (353 835
-# unknowns: about 45 minutes of lu-mumps at 7.5 GB). fieldsplit-schur is left out: 3-4x
-# schur-amg's time per solve on this scene (reports/README, the competitors).
+# unknowns: about 45 minutes of lu-mumps at 7.5 GB). fieldsplit-schur is left out: about 5x
+# schur-amg's time per solve on this scene (reports/paper-tables/report.md, Table 2).
 tradeoff block-strips 0 --discretisation --solvers schur-amg,schur-gamg,lu-mumps \
   --knob schur_amg_ll_pc_hypre_boomeramg_strong_threshold=0.25,0.7 --knob schur_amg_qq_pc_sor_its=2
 # The cheapening knobs of the backends the sweeps above leave out, at their defaults on the

@@ -40,7 +40,7 @@ bool block_view_suffices(PCType type);
 
 // -<prefix>block_copies (default false): copies instead of views. Views save the memory;
 // copies are faster to multiply and sweep (PETSc's inode kernels read compact rows, a view
-// skips the other blocks' columns of each row): measured in reports/README.md.
+// skips the other blocks' columns of each row): docs/method.md, "Choices beyond the paper".
 bool block_copies_requested(const std::string& prefix);
 
 }  // namespace stiction::solvers

@@ -58,8 +58,8 @@
 // against the same mesh without contact, worst level: full 1.37-2.38x, upper 1.11-1.98x;
 // reports/contact-levels-0-2/ and contact-levels-0-2-upper/). Tried and not kept: a diagonal
 // prediction of B2 P_A^-1 r_a in the upper form's multiplier solve (5-12% fewer iterations
-// on the 2D scenes, none on hertz-spheres-3d at level 2; reports/README,
-// contact-levels-0-2-pair-removed).
+// on the other contact scenes, none on hertz-spheres-3d at level 2; docs/method.md,
+// "Choices beyond the paper").
 // S~ is solved by its own KSP (<prefix>ss_, by default MUMPS's LU: it lives on the slave
 // surface only, and its rows need pivoting, schur-levels-common.opts). With exact inner
 // solves and S~ = S_g the full form is the exact inverse (tests/backends).

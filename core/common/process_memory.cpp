@@ -36,7 +36,7 @@ namespace {
 // unknowns (a Krylov basis vector at level 1 of the block with strips is 2.8 MB) in its own
 // mapping: a basis freed before the next assembly is then returned rather than held in the
 // heap while that assembly and set-up allocate theirs, which set the run's peak
-// (reports/README.md, "Level-1 peak memory").
+// (docs/method.md, "Choices beyond the paper").
 std::size_t mapped_block_bytes() {
   const char* given = std::getenv("STICTION_MMAP_THRESHOLD_MB");
   if (!given) return std::size_t{1} << 20;

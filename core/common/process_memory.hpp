@@ -23,11 +23,12 @@ inline double peak_resident_mb() { return proc_status_mb(0, "VmHWM"); }
 void return_freed_memory_to_the_system();
 // Mapped blocks are faulted in anew each time a phase allocates them again (the Newton
 // matrix at every assembly), which with 4 kB pages slows the assembly and the AMG set-up
-// (reports/README.md, "Why the allocator kept freed memory"). glibc backs them with
-// transparent huge pages when its tunable glibc.malloc.hugetlb=1 is set, which it reads only
-// at start-up: this re-executes the program (argv as given) with the tunable added to
-// GLIBC_TUNABLES, unless that already names it or STICTION_HOLD_FREED_MEMORY=1. Returns if
-// no re-execution took place. Call it first in main, before MPI or threads start.
+// (reports/block-strips-studies/level2-block-strips-schur-amg/allocator/README.md). glibc
+// backs them with transparent huge pages when its tunable glibc.malloc.hugetlb=1 is set,
+// which it reads only at start-up: this re-executes the program (argv as given) with the
+// tunable added to GLIBC_TUNABLES, unless that already names it or
+// STICTION_HOLD_FREED_MEMORY=1. Returns if no re-execution took place. Call it first in main,
+// before MPI or threads start.
 void restart_with_huge_pages_for_mapped_blocks(char** argv);
 // One line for a run's header: how the allocator was set.
 std::string allocator_settings();

@@ -46,7 +46,7 @@ ContactPair::ContactPair(std::string name, const fem::FieldSpace& space, int sla
   u_previous_n_app_ = u_previous_.size();
 }
 
-// The adaptive r_t (Sec. 4.4) starts every increment from its initial value, with no
+// The adaptive r_t (Sec. 4.3) starts every increment from its initial value, with no
 // previous correction to compare with (choice: the paper says neither whether the adaptation
 // carries over nor how far it may go). Carried over, it drifted without bound on ironing-2d
 // level 0: by t = 1.045, after 9 sliding steps, r_t ranged over 1e-17 .. 1.6e5 times its
@@ -222,7 +222,7 @@ int ContactPair::update_states(double t, fem::StateView u, const double* lambda,
     tol.gap = std::max(settings_.gap_tolerance * slave_.diameter, entry) * slave_.lumped_mass[i];
     NodeState next = next_state(state_[i], node_quantities(k.n, k.G, k.S, lam), settings_.friction_at(t), tol);
     if (!k.admissible) next = NodeState::Inactive;
-    // Adaptive r_t (Sec. 4.4): consecutive tangential corrections pointing the same way mean
+    // Adaptive r_t (Sec. 4.3): consecutive tangential corrections pointing the same way mean
     // r_t is too small (grow it), opposite ways mean it overshoots (shrink it), but never
     // below tangential_penalty_floor times its start (choice; the paper sets no bound, but
     // warns that too small an r_t never aligns lambda_t). As r_t -> 0 the slip row
@@ -230,7 +230,7 @@ int ContactPair::update_states(double t, fem::StateView u, const double* lambda,
     // loses the friction's direction and the contact residual swings with the states fixed
     // (groove walls of block-strips). The default floor, one of the paper's factors of 20
     // below the start, leaves r_t room to fall where the start is too stiff (ironing-2d).
-    // Measurements: reports/README.md, "The adaptive r_t's floor".
+    // Measurements: docs/method.md, "Choices beyond the paper".
     const Vec3 dt = dlam - k.n * k.n.dot(dlam), last = last_dlambda_t_[i];
     if (adapt_r_t && state_[i] == NodeState::Slip && next == NodeState::Slip && dt.norm() > 0 && last.norm() > 0) {
       const double cosine = dt.dot(last) / (dt.norm() * last.norm());

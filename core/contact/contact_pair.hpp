@@ -1,7 +1,7 @@
 #pragma once
 // What every contact pair shares (paper Sec. 4): the slave surface with its P1 vector
 // multiplier, the per-node contact states and their state machine (Sec. 4.5), the adaptive
-// tangential penalty r_t (Sec. 4.4), the constraint rows of (30) (node_row.hpp) and the
+// tangential penalty r_t (Sec. 4.3), the constraint rows of (30) (node_row.hpp) and the
 // mass part of the Schur approximation (32). A master (rigid plane, deformable surface)
 // supplies only its kinematics: per slave node the contact normal n_i, the vector weighted
 // gap G_i and the weighted slip increment S_i with their derivatives, and the constraint

@@ -15,7 +15,7 @@
 // a = lambda_t + r_t gt, is consistent only while r_t |gt| > mu lambda_n (otherwise it asks
 // lambda_t to point against itself). Written as the projection of lambda_t - r_t gt on the
 // Coulomb disc (Alart & Curnier), the slip row is consistent for every r_t > 0, and r_t only
-// steers the Newton path (adapted as in Sec. 4.4).
+// steers the Newton path (adapted as in Sec. 4.3).
 //
 // Linearisation: the paper's (23) is garbled and drops the variation of the normal. Here
 // the partial derivatives of c with respect to n, G, S and lambda are exact (forward-mode

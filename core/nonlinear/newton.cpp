@@ -433,7 +433,7 @@ StepResult QuasiStaticSolver::solve_increment(int step, double t) {
     // The tolerance is raised to the terminal residual only once the contact states have
     // settled (the last update changed none): while they change, the multipliers of the next
     // iterate decide states, and loose solves there flip nodes near their thresholds and
-    // lengthen the Newton path (reports/paper-tables/level1-terminal-forcing).
+    // lengthen the Newton path (reports/block-strips-studies/level1-terminal-forcing).
     const bool states_settled = last_changes == 0;  // held (unchecked) states count as unchanged
     set_krylov_tolerance(it == 0, rnorm, res.reference_residual, states_settled ? terminal : 0.0, forcing);
     if (!solve_for_direction(step, it, terminal, du, rec.linear)) {

@@ -130,7 +130,7 @@ struct Schemas {
                  1e-9},
                 {"tangential_penalty", VT::Float, "initial r_t of (19), in units of E / (h m_i)", false, 1.0},
                 {"tangential_penalty_floor", VT::Float,
-                 "smallest r_t the adaptation of Sec. 4.4 may reach, relative to the initial r_t (0: no floor)", false,
+                 "smallest r_t the adaptation of Sec. 4.3 may reach, relative to the initial r_t (0: no floor)", false,
                  contact::ContactSettings{}.tangential_penalty_floor},
                 {"normal_linearisation", VT::String,
                  "'surface': the nodal normals' variation in the Jacobian: always, never (the paper), or once the "

@@ -453,7 +453,7 @@ std::vector<double> slip_rows(ContactPair& pair, int n_u, const std::vector<doub
   return rc;
 }
 
-// The adaptive r_t of Sec. 4.4 changes only while Newton's corrections move the multipliers
+// The adaptive r_t of Sec. 4.3 changes only while Newton's corrections move the multipliers
 // by more than settle_tolerance (1%) of them: two corrections of 0.1% along lambda leave
 // the slip rows as they were; two of 50% (the same direction twice: cosine 1, r_t x 20)
 // change them.
@@ -483,7 +483,7 @@ TEST(RigidPlaneContact, TangentialPenaltyAdaptsOnlyWhileTheMultipliersMove) {
   EXPECT_GT(change, 1e-3 * size);
 }
 
-// The adaptive r_t of Sec. 4.4 falls by 20 at every correction that turns away from the last
+// The adaptive r_t of Sec. 4.3 falls by 20 at every correction that turns away from the last
 // one, but not below tangential_penalty_floor times its start (default 1/20): after nine
 // turns by 90 degrees, the slip rows of every node that kept slipping are those of a pair
 // started at the floor (tangential_penalty 1/20); with the floor at 0 they are not (r_t is
