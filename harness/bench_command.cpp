@@ -532,7 +532,7 @@ void run_bench(const BenchOptions& o, const RunInfo& info) {
     for (const auto& b : solvers::backends()) solvers_list.push_back(b.name);
   check_sweep(o, scenes, solvers_list);
 
-  Sweep sw{o, o.out_dir, self_executable(), build_revision(), sweep_limits(o.time_limit_seconds, o.memory_limit_mb),
+  Sweep sw{o, o.out_dir, "stiction", build_revision(), sweep_limits(o.time_limit_seconds, o.memory_limit_mb),
            {}, {}, {}};
   std::error_code ec;
   fs::create_directories(fs::path(sw.out) / "runs", ec);

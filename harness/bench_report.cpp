@@ -162,10 +162,10 @@ void write_bench_report(const std::string& out_dir) {
   md += revisions_text(all_runs, samples);
   md += paper_tables_section(runs, samples, out_dir);
   for (const auto& scene : scenes) {
-    md += fmt::format("\n## {}\n\n| level | solver | status | unknowns | total s | s / linear solve | peak MB | Newton its "
+    md += fmt::format("\n## {}{}\n\n| level | solver | status | unknowns | total s | s / linear solve | peak MB | Newton its "
                       "| linear solves | Krylov / solve | time/solve ratio | memory ratio |\n"
                       "|---|---|---|---|---|---|---|---|---|---|---|---|\n",
-                      scene);
+                      scene, samples.rows.empty() ? "" : ": whole runs");
     std::vector<Row> rows;
     for (const auto& r : runs.rows)
       if (r.at("scene") == scene) rows.push_back(r);

@@ -15,7 +15,7 @@ namespace stiction::harness {
 const char* const kSampleColumns =
     "scene,level,solver,status,systems,systems_converged,unknowns,krylov_per_solve,setup_seconds_per_solve,"
     "solve_seconds_per_solve,seconds_per_linear_solve,peak_rss_mb,max_relative_residual,max_relative_difference,"
-    "path_linear_solves,projected_total_seconds,revision,detail";
+    "path_linear_solves,projected_total_seconds,first_setup_seconds_per_solve,revision,detail";
 
 namespace {
 
@@ -71,7 +71,7 @@ std::string sample_row(const std::string& scene, int level, const std::string& s
                        const std::string& revision) {
   const CsvTable replay = read_csv(run_dir + "/replay.csv");
   int converged = 0;
-  double krylov = 0, setup = 0, solve = 0, worst_residual = 0, worst_difference = 0, unknowns = 0;
+  double krylov = 0, setup = 0, solve = 0, first_setup = 0, worst_residual = 0, worst_difference = 0, unknowns = 0;
   std::string failure, inaccurate;
   for (const auto& r : replay.rows) {
     unknowns = number(r, "unknowns");
@@ -87,6 +87,7 @@ std::string sample_row(const std::string& scene, int level, const std::string& s
     ++converged;
     krylov += number(r, "krylov_iterations");
     setup += number(r, "setup_seconds");
+    first_setup += number(r, "first_setup_seconds");
     solve += number(r, "solve_seconds");
   }
   const int systems = static_cast<int>(replay.rows.size());
@@ -109,16 +110,17 @@ std::string sample_row(const std::string& scene, int level, const std::string& s
   const double per = converged > 0 ? 1.0 / converged : 0.0;
   const double seconds_per_solve = (setup + solve) * per;
   const double projected = status == "ok" ? projected_total_seconds(path_row, seconds_per_solve) : 0.0;
-  return fmt::format("{},{},{},{},{},{},{:.0f},{:.1f},{:.4f},{:.4f},{:.4f},{:.1f},{:.3e},{:.3e},{},{},{},{}", scene,
+  return fmt::format("{},{},{},{},{},{},{:.0f},{:.1f},{:.4f},{:.4f},{:.4f},{:.1f},{:.3e},{:.3e},{},{},{:.4f},{},{}", scene,
                      level, solver, status, systems, converged, unknowns, krylov * per, setup * per, solve * per,
                      seconds_per_solve, child.peak_rss_mb, worst_residual, worst_difference,
                      path_row.empty() ? std::string() : fmt::format("{:.0f}", number(path_row, "linear_solves")),
-                     projected > 0 ? fmt::format("{:.1f}", projected) : std::string(), revision, csv_field(detail));
+                     projected > 0 ? fmt::format("{:.1f}", projected) : std::string(), first_setup * per, revision,
+                     csv_field(detail));
 }
 
 std::string unrecorded_sample_row(const std::string& scene, int level, const std::string& solver,
                                   const std::string& why, const std::string& revision) {
-  return fmt::format("{},{},{},no-record,0,0,0,0,0,0,0,0,0,0,,,{},{}", scene, level, solver, revision, csv_field(why));
+  return fmt::format("{},{},{},no-record,0,0,0,0,0,0,0,0,0,0,,,0,{},{}", scene, level, solver, revision, csv_field(why));
 }
 
 }  // namespace stiction::harness

@@ -28,6 +28,8 @@ CommandLine::CommandLine()
   declare_atlas();
   report_cmd = app.add_subcommand("report", "rebuild report.md of a sweep from its CSV files");
   report_cmd->add_option("dir", report_dir, "the sweep's output directory")->required();
+  report_cmd->add_flag("--headline", report_headline,
+                       "print README.md's headline table from the sweep (a published reports/paper-tables) instead");
 }
 
 void CommandLine::declare_solve() {

@@ -29,6 +29,7 @@ class CommandLine {
   TradeoffOptions tradeoff;
   AtlasOptions atlas;
   std::string report_dir;
+  bool report_headline = false;  // report --headline
   CLI::App *solve_cmd = nullptr, *replay_cmd = nullptr, *scenes_cmd = nullptr, *solvers_cmd = nullptr,
            *bench_cmd = nullptr, *tradeoff_cmd = nullptr, *atlas_cmd = nullptr, *report_cmd = nullptr;
 

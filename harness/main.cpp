@@ -18,6 +18,7 @@
 #include "builtin_scenes.hpp"
 #include "command_line.hpp"
 #include "mpi_processes.hpp"
+#include "readme_headline.hpp"
 #include "common/error.hpp"
 #include "common/petsc.hpp"
 #include "common/process_memory.hpp"
@@ -146,6 +147,10 @@ int main(int argc, char** argv) {
     if (*cl.bench_cmd) {
       cl.bench.petsc_options = args.petsc_pairs;
       harness::run_bench(cl.bench, harness::collect_run_info(argc, argv));
+      return 0;
+    }
+    if (*cl.report_cmd && cl.report_headline) {
+      fmt::print("{}", harness::readme_headline(cl.report_dir));
       return 0;
     }
     if (*cl.report_cmd) {

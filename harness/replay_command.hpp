@@ -35,6 +35,10 @@ struct ReplayedSolve {
   int krylov_restart = 0;
   double relative_difference = 0;
   double relative_residual = 0;
+  // The first set-up of the system (the pattern's analysis included); stats.setup_seconds is
+  // the second, of the same matrix with new values, which a whole run pays per iteration.
+  double first_setup_seconds = 0;
+  PetscVec answer;  // the solve's x
 };
 // krylov_restart 0: the backend's own -ksp_gmres_restart.
 ReplayedSolve replay_system(const RecordedSystem& record, nonlinear::LinearSolver& solver, double krylov_rtol,

@@ -63,11 +63,11 @@ std::string scaling_section(const CsvTable& runs, const std::string& scene, cons
   if (by_solver.empty()) return "";
 
   std::string md = fmt::format(
-      "\n### {}: growth with the mesh\n\nLeast-squares exponent p of cost ~ n^p over the levels (n: unknowns of the "
+      "\n### {}: growth with the mesh{}\n\nLeast-squares exponent p of cost ~ n^p over the levels (n: unknowns of the "
       "Newton system, multipliers included). A level run with PETSc options beyond the backend's defaults names "
       "them in the last column.\n\n| solver | levels | p (s / linear solve) | p (peak memory) | Krylov / "
       "solve per level |\n|---|---|---|---|---|\n",
-      scene);
+      scene, measured_on.empty() ? "" : " (" + measured_on + ")");
   std::string data, time_plot, memory_plot, krylov_plot;
   int block = 0;
   for (const auto& [solver, points] : by_solver) {

@@ -32,7 +32,7 @@ SolveRun run_solve_child(const std::string& scene, int level, const std::vector<
   std::error_code ec;
   fs::remove_all(run_dir, ec);
   fs::create_directories(run_dir, ec);
-  std::vector<std::string> argv{self_executable(), "solve", scene,     "--level",   std::to_string(level),
+  std::vector<std::string> argv{"stiction", "solve", scene,     "--level",   std::to_string(level),
                                 "--out",           run_dir, "--quiet", "--no-vtu", "--metrics",
                                 run_dir + "/metrics.toml"};
   argv.insert(argv.end(), arguments.begin(), arguments.end());

@@ -116,11 +116,15 @@ TEST(Friction, CattaneoMindlinStickZoneOfTwoCylinders) {
     const double P = r.reactions.at("lower/base")[1], Q = r.reactions.at("lower/base")[0];
     const double a = std::sqrt(4 * P * R_star / (M_PI * E_star)), c = a * std::sqrt(1 - Q / (mu * P));
     double outer_stick = 0, inner_slip = 1e9;
+    int n_stick = 0, n_slip = 0;
     for (int i = 0; i < pair.slave().n_nodes(); ++i) {
       const double x = std::abs(pair.slave().reference_position[i][0]);
-      if (pair.state(i) == contact::NodeState::Stick) outer_stick = std::max(outer_stick, x);
-      if (pair.state(i) == contact::NodeState::Slip) inner_slip = std::min(inner_slip, x);
+      if (pair.state(i) == contact::NodeState::Stick) outer_stick = std::max(outer_stick, x), ++n_stick;
+      if (pair.state(i) == contact::NodeState::Slip) inner_slip = std::min(inner_slip, x), ++n_slip;
     }
+    // The bracket means something only with nodes on both sides of it (a sentinel alone
+    // would pass any c).
+    ASSERT_GT(n_stick, 0) << "step " << step << ": no node sticks";
     std::printf("step %d: Q / mu P = %.3f, c = %.5f (Mindlin), outermost stick %.5f, innermost slip %.5f\n", step,
                 Q / (mu * P), c, outer_stick, inner_slip);
     if (step == 1) {
@@ -128,6 +132,7 @@ TEST(Friction, CattaneoMindlinStickZoneOfTwoCylinders) {
       EXPECT_EQ(inner_slip, 1e9) << "pressing identical bodies: every contact node sticks";
       continue;
     }
+    ASSERT_GT(n_slip, 0) << "step " << step << ": no node slips under Q > 0";
     EXPECT_GT(Q, 0);
     EXPECT_LT(Q, mu * P);
     EXPECT_GE(c, outer_stick - 0.02 * a);

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "contact/contact_pair.hpp"
 #include "analytic_reference.hpp"
@@ -64,8 +65,22 @@ HertzFigures hertz_figures(const HertzCase& c, int level) {
   for (int i = 0; i < pair.slave().n_nodes(); ++i)
     if (pair.state(i) == contact::NodeState::Inactive && radius(i) > h.last_active)
       h.first_inactive = std::min(h.first_inactive, radius(i));
-  const harness::HertzComparison fit = harness::compare_with_hertz(*hertz, s.steps.back().contact.at(0).force[1], in_contact);
-  h.a_hertz = fit.a_hertz, h.p0_hertz = fit.p0_hertz, h.a_fit = fit.a_fit, h.p0_fit = fit.p0_fit;
+  const double force = s.steps.back().contact.at(0).force[1];
+  const harness::HertzComparison fit = harness::compare_with_hertz(*hertz, force, in_contact);
+  h.a_fit = fit.a_fit, h.p0_fit = fit.p0_fit;
+  // Hertz's figures for the computed force written out here, not taken from the harness
+  // (the formulas of reference/hertz/README.md, from Johnson's Contact Mechanics; R*, E* and
+  // the symmetry factor from reference/hertz/hertz-cases.csv); the harness must agree.
+  const double P = hertz->force_factor * std::abs(force);
+  if (d == 2) {
+    h.a_hertz = std::sqrt(4 * P * hertz->R_star / (M_PI * hertz->E_star));
+    h.p0_hertz = 2 * P / (M_PI * h.a_hertz);
+  } else {
+    h.a_hertz = std::cbrt(3 * P * hertz->R_star / (4 * hertz->E_star));
+    h.p0_hertz = 3 * P / (2 * M_PI * h.a_hertz * h.a_hertz);
+  }
+  EXPECT_NEAR(fit.a_hertz, h.a_hertz, 1e-12 * h.a_hertz);
+  EXPECT_NEAR(fit.p0_hertz, h.p0_hertz, 1e-12 * h.p0_hertz);
   return h;
 }
 
@@ -91,18 +106,24 @@ void check_hertz(const HertzCase& c, int finest, PeakEstimate trend_on = PeakEst
   EXPECT_NEAR(fine.a_fit / fine.a_hertz, 1.0, 0.02);
   EXPECT_NEAR(fine.p0 / fine.p0_hertz, 1.0, 0.02);
   EXPECT_NEAR(fine.p0_fit / fine.p0_hertz, 1.0, 0.02);
-  // Converging under refinement: the finest level is closer to Hertz than the coarsest, unless
-  // both already agree with it within kHertzFloor, the agreement Hertz's small-strain
-  // half-space theory can give for these finite bodies and loads. With curved P2 cells the
-  // 2D cylinders sit there from level 0: errors a_fit 0.18 / 0.14 / 0.18%, p0 at the axis
-  // node 0.09 / 0.11 / 0.11% at levels 0 / 1 / 2 (on the chords level 0 had 0.32% and 0.26%).
+  // Converging under refinement: the finest level is closer to Hertz than the coarsest; or,
+  // where the coarsest already agrees with it within kHertzFloor (the agreement Hertz's
+  // small-strain half-space theory can give for these finite bodies and loads), every level
+  // stays within that floor. With curved P2 cells the 2D cylinders are in the second case
+  // from level 0 (errors of a_fit and of p0 at the axis node near 0.1-0.2% at every level).
   auto err_p0 = [&](const HertzFigures& h) {
     return std::abs((trend_on == PeakEstimate::AxisNode ? h.p0 : h.p0_fit) / h.p0_hertz - 1);
   };
   auto err_a = [](const HertzFigures& h) { return std::abs(h.a_fit / h.a_hertz - 1); };
-  auto converging = [](double coarse, double finest) { return finest < coarse || std::max(coarse, finest) < kHertzFloor; };
-  EXPECT_TRUE(converging(err_p0(levels.front()), err_p0(fine))) << err_p0(levels.front()) << " -> " << err_p0(fine);
-  EXPECT_TRUE(converging(err_a(levels.front()), err_a(fine))) << err_a(levels.front()) << " -> " << err_a(fine);
+  using Deviation = std::function<double(const HertzFigures&)>;
+  for (const Deviation& err : {Deviation(err_p0), Deviation(err_a)}) {
+    if (err(levels.front()) >= kHertzFloor) {
+      EXPECT_LT(err(fine), err(levels.front())) << "not converging: " << err(levels.front()) << " -> " << err(fine);
+      continue;
+    }
+    for (size_t level = 0; level < levels.size(); ++level)
+      EXPECT_LT(err(levels[level]), kHertzFloor) << "level " << level;
+  }
 }
 
 TEST(Hertz2D, CylinderOnRigidPlaneConvergesToHertz) { check_hertz(kCylinderOnPlane, 2); }
