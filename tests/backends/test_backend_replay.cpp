@@ -89,7 +89,8 @@ TEST(EveryBackendOnRecordedSystems, BlockStripsPressingAndSliding) {
       const double distance = relative_distance(a.answer, exact.answer);
       std::printf("%s %s: %d Krylov iterations, residual %.1e, distance to lu-mumps %.1e\n", b.name.c_str(),
                   system.c_str(), st.iterations, a.relative_residual, distance);
-      EXPECT_LT(distance, 1e-5);
+      // At 1e-9 every answer lies within 2e-8 of the factorisation's on these systems.
+      EXPECT_LT(distance, 1e-6);
       ++compared;
     }
   }

@@ -473,10 +473,7 @@ TEST_F(StictionCli, RecordThenReplayWithAnotherBackend) {
   };
   const auto rtol_column = [&](const std::string& csv) {
     std::vector<std::string> values;
-    std::ifstream in(dir_ / csv);
-    for (std::string line; std::getline(in, line);)
-      if (!line.empty() && line[0] != '#' && line.rfind("system,", 0) != 0)
-        values.push_back(line.substr(line.rfind(',') + 1));
+    for (const auto& row : stiction::harness::read_csv((dir_ / csv).string()).rows) values.push_back(row.at("krylov_rtol"));
     return values;
   };
   const CliRun rep = replay("replay.csv", {});
