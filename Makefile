@@ -1,7 +1,7 @@
 # Two commands do everything on a fresh Debian 12 machine:
 #   make test    install missing packages, configure, build, run the whole test suite
 #   make bench   same set-up, then the paper's benchmark (Tables 1-3, block with strips) in
-#                a new reports/paper-tables-<revision>/: about 45 min at levels 0-1 on 2 cores
+#                a new reports/paper-tables-<revision>/: 83 min at levels 0-1 on 2 AVX2 cores
 #                (BENCH_LEVELS=0,1,2 for the full tables; scripts/paper-tables.sh lists the
 #                settings); scripts/publish-report.sh then replaces reports/paper-tables/
 #   make bench-all   every built-in scene x every backend in reports/latest/, and the

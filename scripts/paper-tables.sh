@@ -10,8 +10,9 @@
 #   * every backend (BENCH_SOLVERS, default all) solves the recorded systems in its own process.
 # Output, in reports/paper-tables-<revision>/ (BENCH_OUT moves it): report.md, runs.csv (whole
 # runs), samples.csv (the sample), steps.csv, growth plots with the paper's points, and the
-# contact states at the last load step (the paper's Figures 11 and 12). About 45 minutes at
-# levels 0-1 on 2 cores; BENCH_LEVELS=0,1,2 adds level 2 (about 2.5 hours more, 6 GB).
+# contact states at the last load step (the paper's Figures 11 and 12). 83 minutes at
+# levels 0-1 on 2 AVX2 cores; BENCH_LEVELS=0,1,2 adds level 2 (not yet timed this way: the
+# path run alone, schur-amg's whole run, took 90 minutes and 5.4 GB on an AVX-512 machine).
 # BENCH_RESUME=1 continues an interrupted sweep in the same directory (a killed whole run from
 # its checkpoint); a binary of another revision is refused unless BENCH_ALLOW_OTHER_REVISION=1.
 # BENCH_TIME_LIMIT (seconds per run, default 3600) and BENCH_PETSC_OPTIONS (PETSc options for
