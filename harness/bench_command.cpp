@@ -324,16 +324,18 @@ std::string options_for(const BenchOptions& o, const std::string& solver) {
 }
 
 // The child's command line: `stiction solve` of the run into run_dir (continued from its
-// checkpoint there when `continued`), with the sweep's settings and the PETSc options whose
-// prefix is the run's backend.
+// checkpoint there when `continued`), with the sweep's settings, `extra` arguments and the
+// PETSc options whose prefix is the run's backend.
 std::vector<std::string> child_arguments(const BenchOptions& o, const BenchRun& run, const std::string& exe,
-                                         const std::string& run_dir, bool continued) {
+                                         const std::string& run_dir, bool continued,
+                                         const std::vector<std::string>& extra = {}) {
   std::vector<std::string> argv{exe,        "solve",    run.scene,  "--level",   std::to_string(run.level),
                                 "--solver", run.solver, continued ? "--restart" : "--out", run_dir, "--quiet",
                                 "--no-vtu", "--metrics", run_dir + "/metrics.toml"};
   if (!o.forcing.empty()) argv.insert(argv.end(), {"--forcing", o.forcing});
   if (o.krylov_rtol >= 0) argv.insert(argv.end(), {"--krylov-rtol", fmt::format("{:g}", o.krylov_rtol)});
   if (o.quick) argv.push_back("--quick");
+  argv.insert(argv.end(), extra.begin(), extra.end());
   std::istringstream words(options_for(o, run.solver));
   for (std::string w; words >> w;) argv.push_back(w);
   return argv;
@@ -409,11 +411,10 @@ void run_whole(Sweep& sw, const Job& job, size_t position) {
   } else {
     fmt::print(stderr, "{}: continued from its checkpoint after load step {}\n", progress, continued->last_step);
   }
-  std::vector<std::string> argv = child_arguments(o, run, sw.exe, run_dir, continued.has_value());
-  if (job.kind == Job::Kind::Path) {
-    const auto record = record_arguments(sample_record_dir(sw.out, run.scene, run.level), o.sample);
-    argv.insert(argv.begin() + 13, record.begin(), record.end());  // before the PETSc options
-  }
+  const std::vector<std::string> argv =
+      child_arguments(o, run, sw.exe, run_dir, continued.has_value(),
+                      job.kind == Job::Kind::Path ? record_arguments(sample_record_dir(sw.out, run.scene, run.level), o.sample)
+                                                  : std::vector<std::string>{});
   int last_step = -1;
   double last_print = -1e9;
   const auto on_tick = [&](double t) {

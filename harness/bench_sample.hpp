@@ -1,10 +1,9 @@
 #pragma once
 // The recorded sample of a sweep (`stiction bench --sample STEP:IT,...`): the whole run of
 // the path backend records the chosen Newton systems of each scene and level, then every
-// backend solves those same systems in a process of its own (`stiction replay`), so that
-// set-up, solve, peak memory, Krylov iterations and the residual of each backend's answer
-// are measured on identical matrices, at a small part of the cost of a whole run per
-// backend. One row per (scene, level, backend) goes to samples.csv.
+// backend solves those same systems in a process of its own (`stiction replay`): every
+// backend is compared on identical matrices without a whole run of its own. One row per
+// (scene, level, backend) goes to samples.csv.
 #include <map>
 #include <string>
 #include <vector>

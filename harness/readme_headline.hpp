@@ -7,9 +7,10 @@
 
 namespace stiction::harness {
 
-// The markdown table of the headline for level `level` of `block-strips` (schur-amg against
-// the fastest direct backend on the recorded sample, beside the paper's Table 2 ratios), and
-// one line saying what each figure was measured on. Throws when the sweep lacks the rows.
+// The markdown table of the headline for level `level` of `block-strips`: schur-amg against
+// the fastest direct backend on the recorded sample, beside the paper's Table 2 ratios, each
+// row naming whether it comes from the sample, a whole run or a projection. Throws when the
+// sweep lacks the rows.
 std::string readme_headline(const std::string& paper_tables_dir, int level = 1);
 
 }  // namespace stiction::harness

@@ -1,15 +1,15 @@
 #!/bin/bash
 # Strong scaling, one process against two, on a free machine; one sweep directory per command.
-cd /work/main
+cd "$(git rev-parse --show-toplevel)"
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
 B=${STICTION_BIN:?}
-run() { echo "== $(date -u +%H:%M:%S) $*" >> /work/l2/scaling.log; $B bench "$@" >> /work/l2/scaling.log 2>&1; }
+run() { echo "== $(date -u +%H:%M:%S) $*" >> "${LOG:-scaling.log}"; $B bench "$@" >> "${LOG:-scaling.log}" 2>&1; }
 run --scenes block-strips --solvers schur-amg --levels 1 --ranks 1,2 --time-limit 2400 --out reports/scaling/block-strips-L1
 run --scenes block-compression --solvers schur-amg,lu-mumps --levels 1 --ranks 1,2 --time-limit 1800 --out reports/scaling/block-compression-L1
 run --scenes mooney-rivlin-block --solvers schur-amg --levels 1 --ranks 1,2 --time-limit 1800 --out reports/scaling/mooney-rivlin-block-L1
 run --scenes block-compression --solvers schur-amg --levels 2 --ranks 1,2 --time-limit 2400 --out reports/scaling/block-compression-L2
 run --scenes mooney-rivlin-block --solvers schur-amg,lu-mumps --levels 1 --ranks 1,2 --time-limit 1800 --resume --out reports/scaling/mooney-rivlin-block-L1
-echo "== $(date -u +%H:%M:%S) done" >> /work/l2/scaling.log
+echo "== $(date -u +%H:%M:%S) done" >> "${LOG:-scaling.log}"
 # Level 2, 2026-12-04, binary of 797810e (the ironing run on the other core stopped with SIGSTOP):
 run --scenes mooney-rivlin-block --solvers schur-amg --levels 2 --ranks 1,2 --time-limit 2400 --out reports/scaling/mooney-rivlin-block-L2
 # block-strips level 2, its first load step only (t = 1: 2 Newton iterations), one and two processes:
